@@ -1,0 +1,23 @@
+//! `legacy-rt`: an interpreter for the numeric scene files of a classic university
+//! ray-tracing course.
+//!
+//! A scene flows text → records → typed scene → pixels → file:
+//! [`scene_file`] reads the text into records (syntax only), [`scene`] validates them into
+//! typed lights and [`shapes`], and the renderer traces them as the course's C program did.
+//! The format and the rendering rules are those of the project's spec (`spec §N` in the
+//! comments); the formulas are those of the course notes.
+//!
+//! ```
+//! let text = "8 6  world\n0 0 3  viewpoint\n13 sphere\n1 1 1\n0 0 0\n0 0 0\n0 0 -3\n1\n";
+//! let scene = legacy_rt::load(text).unwrap();
+//! assert_eq!(scene.objects.len(), 1);
+//! assert_eq!(scene.default_size(), (640, 480));
+//! ```
+
+pub mod error;
+pub mod scene;
+pub mod scene_file;
+pub mod shapes;
+
+pub use error::SceneError;
+pub use scene::{Scene, dump, load};

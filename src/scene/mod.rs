@@ -1,0 +1,173 @@
+//! Meaning: records to a validated, typed scene (spec §3-§5).
+//!
+//! [`load`] runs the whole front end: [`crate::scene_file`] reads the text into records,
+//! then [`build`] turns each record into a light or an [`Object`], validating its numbers
+//! and precomputing everything that depends only on the object (frames, `rotmat`, `irot`,
+//! `k`, unit normals, spotlight cosines, textures).
+
+mod build;
+mod dump;
+
+pub use dump::dump;
+
+use crate::error::SceneError;
+use crate::shapes::Shape;
+use glam::{DVec2, DVec3};
+use std::sync::Arc;
+
+/// Reads and validates a scene; the error points at the line to fix.
+pub fn load(text: &str) -> Result<Scene, SceneError> {
+    crate::scene_file::read(text)
+        .and_then(build::build)
+        .map_err(|pending| pending.locate(text))
+}
+
+/// Ambient, diffuse and specular rgb (spec §3.1). Unbounded reals; the specular triple is
+/// the mirror reflectivity (spec §4.5).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Material {
+    /// Light the surface shows by itself, before the distance division.
+    pub ambient: DVec3,
+    /// How strongly it scatters each light (spec §4.3).
+    pub diffuse: DVec3,
+    /// Mirror reflectivity per channel.
+    pub specular: DVec3,
+}
+
+/// A spotlight's beam (spec §4.3, §5.7).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Beam {
+    /// unit(aim - location).
+    pub direction: DVec3,
+    /// The half-angle in degrees, as written.
+    pub half_angle: f64,
+    /// cos(half-angle): a point is lit only if its direction's cosine exceeds this.
+    pub cos_limit: f64,
+}
+
+/// A point light (10) or spotlight (11). Lights are invisible.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Light {
+    /// Emissivity rgb.
+    pub emissivity: DVec3,
+    /// Location.
+    pub location: DVec3,
+    /// The beam of a spotlight; `None` for a point light.
+    pub beam: Option<Beam>,
+    /// The line of its type code.
+    pub line: usize,
+}
+
+/// The procedural shaders of spec §5.5.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Shader {
+    /// Index 0: red or blue removed in stripes.
+    Stripes,
+    /// Index 1: the ambient modulated by a colour wheel around the origin.
+    ColourWheel,
+}
+
+/// How a textured plane maps its texture (spec §5.8).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TextureMode {
+    /// 1: stretched once over the rectangle.
+    Fit,
+    /// 2: repeated at its own size in screen pixels.
+    Tile,
+}
+
+/// A P6 texture as bytes, rows from the **bottom** up so that row 0 is y = 0 on the plane.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Texture {
+    /// The file name as written in the scene.
+    pub path: String,
+    /// Width in texels.
+    pub width: usize,
+    /// Height in texels.
+    pub height: usize,
+    /// RGB bytes, `width * height`, bottom row first.
+    pub texels: Vec<[u8; 3]>,
+}
+
+/// What varies a material over a surface.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Pattern {
+    /// One material everywhere.
+    Plain,
+    /// 16: a checkerboard of the material and a background material (spec §5.4).
+    Tiles {
+        /// Tile width and height, > 0.
+        tile: DVec2,
+        /// The second material block.
+        background: Material,
+    },
+    /// 17: a texture multiplying ambient and diffuse (spec §5.8).
+    Texture {
+        /// The texture, shared if the scene is cloned.
+        texture: Arc<Texture>,
+        /// Fit or tile.
+        mode: TextureMode,
+    },
+    /// 19, 20: a shader replacing the ambient (spec §5.5).
+    Shader {
+        /// Which shader.
+        shader: Shader,
+        /// The sphere's centre or the plane's point: the shader's origin.
+        origin: DVec3,
+    },
+}
+
+/// A visible object: a shape, its material and how the material varies.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Object {
+    /// The geometry.
+    pub shape: Shape,
+    /// The material (for tiled planes, the foreground tiles').
+    pub material: Material,
+    /// Tiles, texture, shader or nothing.
+    pub pattern: Pattern,
+    /// The record's name: "sphere", "tiled plane", ...
+    pub kind: &'static str,
+    /// The line of its type code.
+    pub line: usize,
+}
+
+/// A validated scene: header, lights and objects, each in file order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scene {
+    /// World window width and height, centred on the origin in z = 0 (spec §2.1).
+    pub window: DVec2,
+    /// The eye.
+    pub viewpoint: DVec3,
+    /// Lights in file order.
+    pub lights: Vec<Light>,
+    /// Objects in file order (the order that breaks ties, spec §4.6).
+    pub objects: Vec<Object>,
+}
+
+impl Scene {
+    /// The default image size of spec §1: width 640, height from the window's aspect
+    /// ratio, rounded.
+    pub fn default_size(&self) -> (u64, u64) {
+        let height = (640.0 * self.window.y / self.window.x).round();
+        (640, height.clamp(0.0, u32::MAX as f64) as u64)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_missing_number_is_named_even_when_the_error_shows_up_later() {
+        // The ambient line lacks a number; scanf takes the diffuse line's first number, the
+        // centre takes the next record's code, and the radius (line 11) is 0.
+        let text = "8 6\n0 0 3\n13\n1 2\n0 0 0\n0 0 0\n0 0 -3\n1\n13\n1 1 1\n0 0 0\n";
+        let error = load(text).unwrap_err();
+        let split = "the sphere's ambient line (line 4) holds only 2 of its 3 numbers";
+        assert!(
+            error.notes.iter().any(|n| n.starts_with(split)),
+            "{error:?}"
+        );
+    }
+}

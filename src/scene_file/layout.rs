@@ -1,0 +1,288 @@
+//! The record layouts of spec §3.2: for each type code, the groups that follow its line.
+//!
+//! The layout drives the reader: the format has no delimiters between groups other than
+//! "N numbers, then the rest of the line is a comment" (spec §2.2), so the reader must
+//! know N for every group before it reads it.
+
+/// The labels of the groups. The meaning layer looks groups up by these names, and error
+/// messages quote them ("the sphere's radius line").
+pub mod label {
+    pub const WINDOW: &str = "world window";
+    pub const VIEWPOINT: &str = "viewpoint";
+    pub const AMBIENT: &str = "ambient";
+    pub const DIFFUSE: &str = "diffuse";
+    pub const SPECULAR: &str = "specular";
+    pub const BACK_AMBIENT: &str = "background ambient";
+    pub const BACK_DIFFUSE: &str = "background diffuse";
+    pub const BACK_SPECULAR: &str = "background specular";
+    pub const EMISSIVITY: &str = "emissivity";
+    pub const LOCATION: &str = "location";
+    pub const AIM: &str = "aim point";
+    pub const HALF_ANGLE: &str = "half-angle";
+    pub const CENTRE: &str = "centre";
+    pub const RADIUS: &str = "radius";
+    pub const NORMAL: &str = "normal";
+    pub const POINT: &str = "point";
+    pub const XDIR: &str = "x direction";
+    pub const SIZE: &str = "size";
+    pub const TILE_SIZE: &str = "tile size";
+    pub const TEXTURE: &str = "texture file";
+    pub const MODE: &str = "mode";
+    pub const SHADER: &str = "shader index";
+    pub const VERTEX: &str = "vertex";
+    pub const BASE: &str = "base centre";
+    pub const APEX: &str = "apex";
+    pub const WAIST_CENTRE: &str = "waist centre";
+    pub const CENTRE_LINE: &str = "centre line";
+    pub const RADIUS_HEIGHT: &str = "radius and height";
+    pub const END_RADIUS_HALF_HEIGHT: &str = "end radius and half-height";
+    pub const WAIST_RADIUS: &str = "waist radius";
+    /// The ten numbers on the QUADRIC line (not a group of its own).
+    pub const COEFFICIENTS: &str = "coefficients";
+}
+
+use label::*;
+
+/// One group of a record: N numbers, or a file name token.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Slot {
+    /// `count` numbers, then a comment to the end of the line.
+    Numbers {
+        /// The group's name.
+        label: &'static str,
+        /// How many numbers it holds.
+        count: usize,
+    },
+    /// One whitespace-free token, then a comment (the textured plane's file name).
+    FileName {
+        /// The group's name.
+        label: &'static str,
+    },
+}
+
+impl Slot {
+    /// The group's name.
+    pub fn label(&self) -> &'static str {
+        match self {
+            Slot::Numbers { label, .. } | Slot::FileName { label } => label,
+        }
+    }
+}
+
+const fn n(label: &'static str, count: usize) -> Slot {
+    Slot::Numbers { label, count }
+}
+
+/// The header: world window (2 numbers) and viewpoint (3), spec §2.1.
+pub const HEADER: [Slot; 2] = [n(WINDOW, 2), n(VIEWPOINT, 3)];
+
+/// A material block: ambient, diffuse and specular rgb (spec §3.1).
+const M: [Slot; 3] = [n(AMBIENT, 3), n(DIFFUSE, 3), n(SPECULAR, 3)];
+
+/// The layout of one record kind.
+#[derive(Debug, PartialEq)]
+pub struct Layout {
+    /// The type code, or 0 for `QUADRIC`.
+    pub code: u32,
+    /// The record's name in messages ("sphere", "tiled plane").
+    pub name: &'static str,
+    /// The groups after the code line, in file order.
+    pub slots: &'static [Slot],
+}
+
+macro_rules! layout {
+    ($code:expr, $name:expr, [$($slot:expr),* $(,)?]) => {
+        Layout { code: $code, name: $name, slots: &[$($slot),*] }
+    };
+}
+
+/// Every supported type code, spec §3.2.
+pub static LAYOUTS: [Layout; 13] = [
+    layout!(10, "light", [n(EMISSIVITY, 3), n(LOCATION, 3)]),
+    layout!(
+        11,
+        "spotlight",
+        [
+            n(EMISSIVITY, 3),
+            n(LOCATION, 3),
+            n(AIM, 3),
+            n(HALF_ANGLE, 1)
+        ]
+    ),
+    layout!(13, "sphere", [M[0], M[1], M[2], n(CENTRE, 3), n(RADIUS, 1)]),
+    layout!(14, "plane", [M[0], M[1], M[2], n(NORMAL, 3), n(POINT, 3)]),
+    layout!(
+        15,
+        "finite plane",
+        [
+            M[0],
+            M[1],
+            M[2],
+            n(NORMAL, 3),
+            n(POINT, 3),
+            n(XDIR, 3),
+            n(SIZE, 2)
+        ]
+    ),
+    layout!(
+        16,
+        "tiled plane",
+        [
+            M[0],
+            M[1],
+            M[2],
+            n(NORMAL, 3),
+            n(POINT, 3),
+            n(XDIR, 3),
+            n(TILE_SIZE, 2),
+            n(BACK_AMBIENT, 3),
+            n(BACK_DIFFUSE, 3),
+            n(BACK_SPECULAR, 3),
+        ]
+    ),
+    layout!(
+        17,
+        "textured plane",
+        [
+            M[0],
+            M[1],
+            M[2],
+            n(NORMAL, 3),
+            n(POINT, 3),
+            n(XDIR, 3),
+            n(SIZE, 2),
+            Slot::FileName { label: TEXTURE },
+            n(MODE, 1),
+        ]
+    ),
+    layout!(
+        19,
+        "procedural sphere",
+        [M[0], M[1], M[2], n(CENTRE, 3), n(RADIUS, 1), n(SHADER, 1)]
+    ),
+    layout!(
+        20,
+        "procedural plane",
+        [M[0], M[1], M[2], n(NORMAL, 3), n(POINT, 3), n(SHADER, 1)]
+    ),
+    layout!(
+        21,
+        "paraboloid",
+        [
+            M[0],
+            M[1],
+            M[2],
+            n(VERTEX, 3),
+            n(CENTRE_LINE, 3),
+            n(RADIUS_HEIGHT, 2)
+        ]
+    ),
+    layout!(
+        22,
+        "cylinder",
+        [
+            M[0],
+            M[1],
+            M[2],
+            n(BASE, 3),
+            n(CENTRE_LINE, 3),
+            n(RADIUS_HEIGHT, 2)
+        ]
+    ),
+    layout!(
+        23,
+        "cone",
+        [
+            M[0],
+            M[1],
+            M[2],
+            n(APEX, 3),
+            n(CENTRE_LINE, 3),
+            n(RADIUS_HEIGHT, 2)
+        ]
+    ),
+    layout!(
+        24,
+        "hyperboloid",
+        [
+            M[0],
+            M[1],
+            M[2],
+            n(WAIST_CENTRE, 3),
+            n(CENTRE_LINE, 3),
+            n(END_RADIUS_HALF_HEIGHT, 2),
+            n(WAIST_RADIUS, 1),
+        ]
+    ),
+];
+
+impl Layout {
+    /// What the record holds, for error notes: "a sphere (type 13) has, one line each: ...".
+    pub fn describe(&self) -> String {
+        let slots: Vec<String> = self
+            .slots
+            .iter()
+            .map(|slot| match slot {
+                Slot::Numbers { label, count: 1 } => format!("{label} (1 number)"),
+                Slot::Numbers { label, count } => format!("{label} ({count})"),
+                Slot::FileName { label } => format!("{label} name"),
+            })
+            .collect();
+        let head = match self.code {
+            0 => format!("a {} (QUADRIC A B C D E F G H I J)", self.name),
+            code => format!("a {} (type {code})", self.name),
+        };
+        format!("{head} has, one line each: {}", slots.join(", "))
+    }
+}
+
+/// The `QUADRIC` record: its coefficients stand on the keyword's line; a material follows.
+pub static QUADRIC: Layout = layout!(0, "quadric", [M[0], M[1], M[2]]);
+
+/// Codes that other variants of the course used, with what they meant there.
+pub fn unsupported(code: u32) -> Option<(&'static str, &'static str)> {
+    match code {
+        12 => Some((
+            "projector",
+            "; a plane is type 14, a light 10 and a spotlight 11 in this format",
+        )),
+        18 => Some((
+            "reflective sphere",
+            "; a sphere is type 13, and any object reflects through its specular line",
+        )),
+        _ => None,
+    }
+}
+
+/// The layout of a type code, if the format defines it.
+pub fn of_code(code: u32) -> Option<&'static Layout> {
+    LAYOUTS.iter().find(|layout| layout.code == code)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_code_of_the_table_has_a_layout_and_no_other() {
+        let defined: Vec<u32> = (0..100).filter(|&c| of_code(c).is_some()).collect();
+        assert_eq!(
+            defined,
+            [10, 11, 13, 14, 15, 16, 17, 19, 20, 21, 22, 23, 24]
+        );
+    }
+
+    #[test]
+    fn labels_are_unique_within_a_record() {
+        for layout in LAYOUTS.iter().chain([&QUADRIC]) {
+            for (i, slot) in layout.slots.iter().enumerate() {
+                assert!(
+                    layout.slots[..i].iter().all(|s| s.label() != slot.label()),
+                    "{} repeats {}",
+                    layout.name,
+                    slot.label()
+                );
+            }
+        }
+    }
+}

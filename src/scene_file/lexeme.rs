@@ -1,0 +1,273 @@
+//! The tokens of the format as small `nom` parsers: whitespace, numbers in C `strtod`
+//! syntax, `%d` type codes, file names and the comment that ends a line (spec §2.2).
+
+use nom::{
+    IResult, Parser,
+    branch::alt,
+    bytes::complete::{tag, tag_no_case, take_till, take_till1, take_while},
+    character::complete::{char, digit0, digit1, hex_digit0, hex_digit1, one_of},
+    combinator::{opt, recognize},
+};
+
+/// C's `isspace`: space, tab, newline, vertical tab, form feed, carriage return.
+pub fn is_space(c: char) -> bool {
+    matches!(c, ' ' | '\t' | '\n' | '\x0b' | '\x0c' | '\r')
+}
+
+/// Whitespace that stays on the current line.
+fn is_line_space(c: char) -> bool {
+    is_space(c) && c != '\n'
+}
+
+/// Skips any whitespace, newlines included (what `scanf` does before a conversion).
+pub fn blank(input: &str) -> IResult<&str, &str> {
+    take_while(is_space).parse(input)
+}
+
+/// Skips whitespace up to, not past, the end of the line.
+pub fn line_blank(input: &str) -> IResult<&str, &str> {
+    take_while(is_line_space).parse(input)
+}
+
+/// The rest of the line and its newline: the comment after a group's numbers.
+pub fn comment(input: &str) -> IResult<&str, &str> {
+    let (input, text) = take_till(|c| c == '\n').parse(input)?;
+    let (input, _) = opt(char('\n')).parse(input)?;
+    Ok((input, text))
+}
+
+/// One whitespace-free token (a file name, or the text quoted in an error).
+pub fn token(input: &str) -> IResult<&str, &str> {
+    take_till1(is_space).parse(input)
+}
+
+/// A number as `strtod` reads it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum NumberToken<'a> {
+    /// A finite double.
+    Finite(f64),
+    /// `inf`, `nan` or a number that overflows a double: valid C, an error here.
+    NonFinite(&'a str),
+}
+
+fn exponent(marker: &'static str) -> impl FnMut(&str) -> IResult<&str, &str> {
+    move |input| recognize((one_of(marker), opt(one_of("+-")), digit1)).parse(input)
+}
+
+/// Decimal: `12`, `4.`, `.5`, `1.5e-3`. An `e` with no digits after it is not taken.
+fn decimal(input: &str) -> IResult<&str, &str> {
+    let mantissa = alt((
+        recognize((digit1, opt((char('.'), digit0)))),
+        recognize((char('.'), digit1)),
+    ));
+    recognize((mantissa, opt(exponent("eE")))).parse(input)
+}
+
+/// Hexadecimal floating point: `0x1.8p3`. `0x` with no digits is the number 0 then `x`.
+fn hexadecimal(input: &str) -> IResult<&str, (&str, &str, Option<&str>)> {
+    let (rest, _) = tag_no_case("0x").parse(input)?;
+    let (rest, (int, frac)) = alt((
+        (
+            hex_digit1,
+            nom::combinator::map(opt((char('.'), hex_digit0)), |f| f.map_or("", |(_, d)| d)),
+        ),
+        nom::combinator::map((tag("."), hex_digit1), |(_, d)| ("", d)),
+    ))
+    .parse(rest)?;
+    let (rest, exp) = opt(exponent("pP")).parse(rest)?;
+    Ok((rest, (int, frac, exp)))
+}
+
+/// `inf`, `infinity`, `nan`, `nan(chars)`, in any case.
+fn non_finite_word(input: &str) -> IResult<&str, &str> {
+    let nan_payload = (
+        char('('),
+        take_while(|c: char| c.is_ascii_alphanumeric() || c == '_'),
+        char(')'),
+    );
+    alt((
+        tag_no_case("infinity"),
+        tag_no_case("inf"),
+        recognize((tag_no_case("nan"), opt(nan_payload))),
+    ))
+    .parse(input)
+}
+
+/// Value of a hexadecimal float. Exact for up to 16 significant hex digits; further digits
+/// only decide rounding through a sticky bit.
+fn hex_value(int: &str, frac: &str, exp: Option<&str>) -> f64 {
+    let mut mantissa: u128 = 0;
+    let mut shift: i64 = 0; // binary exponent correction
+    let mut sticky = false;
+    for (i, d) in int.chars().chain(frac.chars()).enumerate() {
+        let digit = u128::from(d.to_digit(16).unwrap_or(0));
+        if mantissa >> 60 == 0 {
+            mantissa = mantissa * 16 + digit;
+            if i >= int.len() {
+                shift -= 4;
+            }
+        } else {
+            sticky |= digit != 0;
+            if i < int.len() {
+                shift += 4;
+            }
+        }
+    }
+    // Keep the sticky bit in the lowest place so rounding to 53 bits sees it.
+    let mantissa = mantissa << 1 | u128::from(sticky);
+    shift -= 1;
+    let exp: i64 = exp
+        .map(|e| {
+            e[1..]
+                .parse::<i64>()
+                .unwrap_or(if e.contains('-') { -100_000 } else { 100_000 })
+        })
+        .unwrap_or(0);
+    let total = (exp + shift).clamp(-20_000, 20_000) as i32;
+    // Scale in steps that cannot overflow or underflow on the way.
+    let mut value = mantissa as f64;
+    let mut remaining = total;
+    while remaining != 0 {
+        let step = remaining.clamp(-1000, 1000);
+        value *= 2f64.powi(step);
+        remaining -= step;
+    }
+    value
+}
+
+/// A number in C `strtod` syntax, with an optional sign.
+pub fn number(input: &str) -> IResult<&str, NumberToken<'_>> {
+    let (after_sign, sign) = opt(one_of("+-")).parse(input)?;
+    let negative = sign == Some('-');
+    if let Ok((rest, (int, frac, exp))) = hexadecimal(after_sign) {
+        let value = hex_value(int, frac, exp);
+        let text = &input[..input.len() - rest.len()];
+        let token = if value.is_finite() {
+            NumberToken::Finite(if negative { -value } else { value })
+        } else {
+            NumberToken::NonFinite(text)
+        };
+        return Ok((rest, token));
+    }
+    if let Ok((rest, _)) = non_finite_word(after_sign) {
+        return Ok((
+            rest,
+            NumberToken::NonFinite(&input[..input.len() - rest.len()]),
+        ));
+    }
+    let (rest, _) = decimal(after_sign)?;
+    let text = &input[..input.len() - rest.len()];
+    // The recogniser above only accepts what Rust's own (correctly rounded) parser accepts.
+    let value: f64 = text.parse().unwrap_or(f64::NAN);
+    let token = if value.is_finite() {
+        NumberToken::Finite(value)
+    } else {
+        NumberToken::NonFinite(text)
+    };
+    Ok((rest, token))
+}
+
+/// A type code as `%d` reads it: optional sign and digits. Out-of-range values saturate.
+pub fn type_code(input: &str) -> IResult<&str, (i64, &str)> {
+    let (rest, text) = recognize((opt(one_of("+-")), digit1)).parse(input)?;
+    let value = text.parse::<i64>().unwrap_or(if text.starts_with('-') {
+        i64::MIN
+    } else {
+        i64::MAX
+    });
+    Ok((rest, (value, text)))
+}
+
+/// The `QUADRIC` keyword, upper case, followed by whitespace or the end of input.
+pub fn quadric_keyword(input: &str) -> IResult<&str, &str> {
+    let (rest, word) = tag("QUADRIC").parse(input)?;
+    match rest.chars().next() {
+        None => Ok((rest, word)),
+        Some(c) if is_space(c) => Ok((rest, word)),
+        Some(_) => Err(nom::Err::Error(nom::error::Error::new(
+            input,
+            nom::error::ErrorKind::Tag,
+        ))),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn value(text: &str) -> (f64, &str) {
+        match number(text) {
+            Ok((rest, NumberToken::Finite(v))) => (v, rest),
+            other => panic!("{text:?} gave {other:?}"),
+        }
+    }
+
+    #[test]
+    fn strtod_forms_of_spec_2_2() {
+        assert_eq!(value(".5"), (0.5, ""));
+        assert_eq!(value("-.34"), (-0.34, ""));
+        assert_eq!(value("4."), (4.0, ""));
+        assert_eq!(value("1e-3"), (0.001, ""));
+        assert_eq!(value("+2"), (2.0, ""));
+        assert_eq!(value("1E+2x"), (100.0, "x"));
+    }
+
+    #[test]
+    fn number_stops_where_strtod_stops() {
+        assert_eq!(value("1e"), (1.0, "e"));
+        assert_eq!(value("1e+"), (1.0, "e+"));
+        assert_eq!(value("2radius"), (2.0, "radius"));
+        assert_eq!(value("1.5.3"), (1.5, ".3"));
+        assert_eq!(value("0x"), (0.0, "x"));
+        assert_eq!(value("-3.99899 -20"), (-3.99899, " -20"));
+    }
+
+    #[test]
+    fn hexadecimal_floats_are_exact() {
+        assert_eq!(value("0x1.8p1"), (3.0, ""));
+        assert_eq!(value("-0X10"), (-16.0, ""));
+        assert_eq!(value("0x.8"), (0.5, ""));
+        assert_eq!(value("0x1p-1074"), (f64::from_bits(1), ""));
+        assert_eq!(value("0x1.fffffffffffffp1023"), (f64::MAX, ""));
+        // 0x1.00000000000008 is exactly half way between 1 and the next double: ties to even.
+        assert_eq!(value("0x1.00000000000008"), (1.0, ""));
+        assert_eq!(value("0x1.000000000000081"), (1.0 + f64::EPSILON, ""));
+    }
+
+    #[test]
+    fn non_finite_numbers_are_reported_as_such() {
+        for text in [
+            "inf", "-INF", "Infinity", "nan", "NaN(123)", "1e999", "0x1p2000",
+        ] {
+            assert!(
+                matches!(number(text), Ok((_, NumberToken::NonFinite(_)))),
+                "{text}"
+            );
+        }
+        assert_eq!(value("1e-999"), (0.0, ""));
+    }
+
+    #[test]
+    fn words_are_not_numbers() {
+        for text in ["x", "-", ".", "+.", "e5", "sphere", ""] {
+            assert!(number(text).is_err(), "{text}");
+        }
+    }
+
+    #[test]
+    fn type_codes_read_like_percent_d() {
+        assert_eq!(type_code("13 sphere").unwrap(), (" sphere", (13, "13")));
+        assert_eq!(type_code("13.5").unwrap().1, (13, "13"));
+        assert_eq!(type_code("+14").unwrap().1, (14, "+14"));
+        assert_eq!(type_code("99999999999999999999").unwrap().1.0, i64::MAX);
+        assert!(type_code("QUADRIC").is_err());
+    }
+
+    #[test]
+    fn quadric_keyword_is_a_whole_upper_case_word() {
+        assert!(quadric_keyword("QUADRIC 1").is_ok());
+        assert!(quadric_keyword("QUADRIC").is_ok());
+        assert!(quadric_keyword("QUADRICS 1").is_err());
+        assert!(quadric_keyword("quadric 1").is_err());
+    }
+}

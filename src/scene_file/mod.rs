@@ -1,0 +1,401 @@
+//! Syntax: scene text to records (spec §2-§3). The only module that knows `nom`.
+//!
+//! The reader follows the course program's `scanf`-then-`fgets` reading exactly: each group
+//! skips whitespace (newlines included), reads its N numbers, and ignores the rest of the
+//! physical line (spec §2.2). What a number *means* is left to [`crate::scene`]; this module
+//! only records values and where they stood.
+
+pub mod layout;
+mod lexeme;
+
+use crate::error::{Found, MeaningError, Pending, SyntaxError};
+use layout::{Layout, Slot};
+use lexeme::NumberToken;
+
+/// The most lights and objects a scene may hold; beyond it the reader stops with an error
+/// instead of exhausting memory.
+pub const MAX_RECORDS: usize = 1_000_000;
+
+/// A number and the byte offset where it stood.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Number {
+    /// The value (always finite).
+    pub value: f64,
+    /// Byte offset of its first character.
+    pub at: usize,
+}
+
+/// What one group holds.
+#[derive(Debug, Clone, PartialEq)]
+pub enum GroupData {
+    /// The numbers of a numeric group, as many as its slot says.
+    Numbers(Vec<Number>),
+    /// The file-name token of the textured plane.
+    FileName(String),
+}
+
+/// One group of a record, read according to its [`Slot`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct Group {
+    /// The slot's label (see [`layout::label`]).
+    pub label: &'static str,
+    /// Byte offset of its first token.
+    pub at: usize,
+    /// Its contents.
+    pub data: GroupData,
+}
+
+impl Group {
+    /// The numbers of a numeric group (empty for a file name).
+    pub fn numbers(&self) -> &[Number] {
+        match &self.data {
+            GroupData::Numbers(numbers) => numbers,
+            GroupData::FileName(_) => &[],
+        }
+    }
+}
+
+/// One record: a type code line (or a `QUADRIC` line) and the groups after it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Record {
+    /// The layout the record was read with.
+    pub layout: &'static Layout,
+    /// Byte offset of the type code or keyword.
+    pub at: usize,
+    /// 1-based line of the type code.
+    pub line: usize,
+    /// The ten coefficients of a `QUADRIC` line; empty for numbered records.
+    pub coefficients: Vec<Number>,
+    /// The groups, one per slot of the layout.
+    pub groups: Vec<Group>,
+}
+
+impl Record {
+    /// The group with this label. Every label of the layout is present once read.
+    pub fn group(&self, label: &str) -> &Group {
+        self.groups
+            .iter()
+            .find(|g| g.label == label)
+            .unwrap_or_else(|| panic!("{} has no group {label}", self.layout.name))
+    }
+}
+
+/// A whole scene file as records: the header groups and the records in file order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SceneText {
+    /// The world window width and height.
+    pub window: Group,
+    /// The viewpoint.
+    pub viewpoint: Group,
+    /// The records, in file order.
+    pub records: Vec<Record>,
+    /// If a group's numbers ran across a line break: a note saying which, for any error
+    /// found later (the usual cause is a missing number there).
+    pub split: Option<String>,
+}
+
+/// The name the header has in messages.
+const HEADER: &Layout = &Layout {
+    code: 0,
+    name: "header",
+    slots: &layout::HEADER,
+};
+
+/// Reads the scene text into records.
+pub(crate) fn read(text: &str) -> Result<SceneText, Pending> {
+    let mut reader = Reader {
+        text,
+        rest: text,
+        line_starts: std::iter::once(0)
+            .chain(text.match_indices('\n').map(|(i, _)| i + 1))
+            .collect(),
+        split: None,
+    };
+    let result = read_all(&mut reader);
+    // A group that ran on across a line break is legal (scanf reads that way), but it is
+    // also what a missing number looks like, and the error then shows up records later.
+    result
+        .map_err(|error| match &reader.split {
+            Some(split) => error.with_note(split.clone()),
+            None => error,
+        })
+        .map(|text| SceneText {
+            split: reader.split.take(),
+            ..text
+        })
+}
+
+fn read_all(reader: &mut Reader<'_>) -> Result<SceneText, Pending> {
+    let mut header = reader.groups(HEADER, 0)?.into_iter();
+    let (window, viewpoint) = (header.next().unwrap(), header.next().unwrap());
+    let mut records = Vec::new();
+    loop {
+        reader.skip(lexeme::blank);
+        if reader.rest.is_empty() {
+            break;
+        }
+        if records.len() == MAX_RECORDS {
+            let limit = MAX_RECORDS;
+            return Err(Pending::new(
+                reader.offset(),
+                MeaningError::TooManyRecords { limit },
+            ));
+        }
+        records.push(reader.record()?);
+    }
+    Ok(SceneText {
+        window,
+        viewpoint,
+        records,
+        split: None,
+    })
+}
+
+struct Reader<'a> {
+    text: &'a str,
+    rest: &'a str,
+    line_starts: Vec<usize>,
+    /// A description of the first group whose numbers ran across a line break.
+    split: Option<String>,
+}
+
+impl<'a> Reader<'a> {
+    fn offset(&self) -> usize {
+        self.text.len() - self.rest.len()
+    }
+
+    fn line_of(&self, offset: usize) -> usize {
+        self.line_starts.partition_point(|&start| start <= offset)
+    }
+
+    /// Runs a parser that cannot fail (whitespace, comments) and moves past what it took.
+    fn skip(&mut self, parser: fn(&'a str) -> nom::IResult<&'a str, &'a str>) {
+        if let Ok((rest, _)) = parser(self.rest) {
+            self.rest = rest;
+        }
+    }
+
+    /// What stands at the reader's position, for an error message, and where.
+    fn found(&self) -> (usize, Found) {
+        if self.rest.is_empty() {
+            // Point just after the last character the file has, not at a blank last line.
+            return (self.text.trim_end().len(), Found::EndOfInput);
+        }
+        if self.rest.starts_with(['\n', '\r']) {
+            return (self.offset(), Found::EndOfLine);
+        }
+        let token = lexeme::token(self.rest).map_or("", |(_, t)| t);
+        let shown: String = token.chars().take(40).collect();
+        let shown = if shown.len() < token.len() {
+            format!("{shown}...")
+        } else {
+            shown
+        };
+        (self.offset(), Found::Token(shown))
+    }
+
+    fn expected(&self, expected: String) -> Pending {
+        let (at, found) = self.found();
+        Pending::new(at, SyntaxError::Expected { expected, found })
+    }
+
+    /// One number: `Ok(None)` when no number stands here.
+    fn number(&mut self, expected: impl Fn() -> String) -> Result<Option<Number>, Pending> {
+        let at = self.offset();
+        match lexeme::number(self.rest) {
+            Ok((rest, NumberToken::Finite(value))) => {
+                self.rest = rest;
+                Ok(Some(Number { value, at }))
+            }
+            Ok((_, NumberToken::NonFinite(text))) => Err(Pending::new(
+                at,
+                SyntaxError::NonFinite {
+                    expected: expected(),
+                    text: text.to_string(),
+                },
+            )),
+            Err(_) => Ok(None),
+        }
+    }
+
+    fn record(&mut self) -> Result<Record, Pending> {
+        let at = self.offset();
+        let line = self.line_of(at);
+        let mut coefficients = Vec::new();
+        let layout = if let Ok((rest, _)) = lexeme::quadric_keyword(self.rest) {
+            self.rest = rest;
+            for letter in "ABCDEFGHIJ".chars() {
+                self.skip(lexeme::line_blank);
+                let expected = || format!("coefficient {letter} of the QUADRIC line");
+                match self.number(expected)? {
+                    Some(number) => coefficients.push(number),
+                    None => {
+                        let (at, found) = self.found();
+                        if matches!(found, Found::Token(_)) {
+                            return Err(self.expected(expected()));
+                        }
+                        let count = coefficients.len();
+                        return Err(Pending::new(
+                            at,
+                            SyntaxError::QuadricLineShort { count, found },
+                        ));
+                    }
+                }
+            }
+            &layout::QUADRIC
+        } else if let Ok((rest, (code, text))) = lexeme::type_code(self.rest) {
+            let known = u32::try_from(code).ok();
+            if let Some(layout) = known.and_then(layout::of_code) {
+                self.rest = rest;
+                layout
+            } else if let Some((name, hint)) = known.and_then(layout::unsupported) {
+                let code = code as u32;
+                return Err(Pending::new(
+                    at,
+                    SyntaxError::Unsupported { code, name, hint },
+                ));
+            } else {
+                let code = text.to_string();
+                return Err(Pending::new(at, SyntaxError::UnknownTypeCode { code }));
+            }
+        } else {
+            let error =
+                self.expected("a type code (10-24) or QUADRIC to start the next record".into());
+            let word = lexeme::token(self.rest).map_or("", |(_, t)| t);
+            if word.eq_ignore_ascii_case("QUADRIC") {
+                return Err(error.with_note("the keyword is QUADRIC, in upper case".into()));
+            }
+            return Err(error);
+        };
+        self.skip(lexeme::comment);
+        let groups = self.groups(layout, at)?;
+        Ok(Record {
+            layout,
+            at,
+            line,
+            coefficients,
+            groups,
+        })
+    }
+
+    /// Reads the groups of a layout; `start` is where the record began, for notes.
+    fn groups(&mut self, layout: &Layout, start: usize) -> Result<Vec<Group>, Pending> {
+        let record = layout.name;
+        let start_line = self.line_of(start);
+        let note = |pending: Pending| {
+            if std::ptr::eq(layout, HEADER) {
+                return pending.with_note(
+                    "a scene file starts with the world window (2 numbers) and the viewpoint (3)"
+                        .to_string(),
+                );
+            }
+            pending
+                .with_note(format!("the {record} record starts on line {start_line}"))
+                .with_note(layout.describe())
+        };
+        let mut groups = Vec::with_capacity(layout.slots.len());
+        for slot in layout.slots {
+            self.skip(lexeme::blank);
+            let at = self.offset();
+            let data = match *slot {
+                Slot::Numbers { label, count } => {
+                    let mut numbers = Vec::with_capacity(count);
+                    for i in 1..=count {
+                        self.skip(lexeme::blank);
+                        let expected = || match count {
+                            1 => format!("the {record}'s {label} (1 number)"),
+                            _ => {
+                                format!("number {i} of the {count} on the {record}'s {label} line")
+                            }
+                        };
+                        let group_line = self.line_of(at);
+                        // The first such group is the likely cause; later ones follow from it.
+                        let moved_on = self.line_of(self.offset()) != group_line;
+                        if i > 1 && moved_on && self.split.is_none() {
+                            let n = i - 1;
+                            self.split = Some(format!(
+                                "the {record}'s {label} line (line {group_line}) holds only {n} \
+                                 of its {count} numbers, so the rest were read from the \
+                                 following lines: is a number missing on line {group_line}?"
+                            ));
+                        }
+                        match self.number(expected) {
+                            Ok(Some(number)) => numbers.push(number),
+                            Ok(None) => return Err(note(self.expected(expected()))),
+                            Err(error) => return Err(note(error)),
+                        }
+                    }
+                    GroupData::Numbers(numbers)
+                }
+                Slot::FileName { label } => match lexeme::token(self.rest) {
+                    Ok((rest, name)) => {
+                        self.rest = rest;
+                        GroupData::FileName(name.to_string())
+                    }
+                    Err(_) => {
+                        return Err(note(self.expected(format!("the {record}'s {label} name"))));
+                    }
+                },
+            };
+            self.skip(lexeme::comment);
+            let label = slot.label();
+            groups.push(Group { label, at, data });
+        }
+        Ok(groups)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn values(group: &Group) -> Vec<f64> {
+        group.numbers().iter().map(|n| n.value).collect()
+    }
+
+    #[test]
+    fn comments_may_hold_numbers_and_blank_lines_separate_groups() {
+        let text = "8 6 world 1 2\n0 0 3\n\n13 sphere 99\n\n5 5 15   r g b ambient 5 5 15\n\
+                    1 1 1\n0 0 0\n\n0 0 -3 centre\n2\n";
+        let scene = read(text).unwrap();
+        assert_eq!(values(&scene.window), [8.0, 6.0]);
+        let sphere = &scene.records[0];
+        assert_eq!(sphere.layout.code, 13);
+        assert_eq!(sphere.line, 4);
+        assert_eq!(
+            values(sphere.group(layout::label::AMBIENT)),
+            [5.0, 5.0, 15.0]
+        );
+        assert_eq!(values(sphere.group(layout::label::RADIUS)), [2.0]);
+    }
+
+    #[test]
+    fn a_group_may_continue_on_the_next_line_as_scanf_reads_it() {
+        let scene = read("8\n6\n0 0\n3\n").unwrap();
+        assert_eq!(values(&scene.viewpoint), [0.0, 0.0, 3.0]);
+    }
+
+    #[test]
+    fn quadric_coefficients_must_share_the_keyword_line() {
+        let good = "8 6\n0 0 3\nQUADRIC 1 0 0 0 1 0 0 1 0 -1 sphere\n1 1 1\n2 2 2\n0 0 0\n";
+        let scene = read(good).unwrap();
+        assert_eq!(scene.records[0].coefficients.len(), 10);
+        let short = "8 6\n0 0 3\nQUADRIC 1 0 0 0 1 0 0 1 0\n-1\n1 1 1\n2 2 2\n0 0 0\n";
+        let error = read(short).unwrap_err();
+        assert_eq!(
+            error.kind,
+            SyntaxError::QuadricLineShort {
+                count: 9,
+                found: Found::EndOfLine
+            }
+            .into()
+        );
+    }
+
+    #[test]
+    fn end_of_input_points_after_the_last_character() {
+        let text = "8 6\n0 0 3\n13\n1 1 1\n\n\n";
+        let error = read(text).unwrap_err();
+        assert_eq!(error.at, text.trim_end().len());
+    }
+}

@@ -1,0 +1,185 @@
+//! The closed set of shapes a scene can hold, one file each, dispatched by `match`.
+//!
+//! Every shape is built once at load by a constructor that validates its numbers and
+//! precomputes what its hit test needs (unit normals, frames, `rotmat`, `irot`, `k`).
+//! Intersection is two-staged (STYLE.md): [`Shape::hit`] only finds the distance `t` and
+//! drives the closest-hit loop; [`Shape::surface`] computes point and normal for the winner.
+
+mod axis_frame;
+mod cone;
+mod cylinder;
+mod finite_plane;
+mod hyperboloid;
+mod paraboloid;
+mod plane;
+mod plane_frame;
+mod quadratic;
+mod quadric;
+mod sphere;
+
+pub use axis_frame::AxisFrame;
+pub use cone::Cone;
+pub use cylinder::Cylinder;
+pub use finite_plane::FinitePlane;
+pub use hyperboloid::Hyperboloid;
+pub use paraboloid::Paraboloid;
+pub use plane::Plane;
+pub use plane_frame::PlaneFrame;
+pub use quadratic::{Roots, solve_quadratic};
+pub use quadric::Quadric;
+pub use sphere::Sphere;
+
+use crate::error::MeaningError;
+use glam::DVec3;
+
+/// A ray: a base point and a unit direction.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Ray {
+    /// Where the ray starts (the eye, or a hit point for shadow and reflected rays).
+    pub base: DVec3,
+    /// Unit direction.
+    pub dir: DVec3,
+}
+
+/// A validation failure in a constructor: which group (by its label in
+/// [`crate::scene_file::layout::label`]), which number of it, and what is wrong.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Invalid {
+    /// The label of the offending group.
+    pub label: &'static str,
+    /// 0-based index of the offending number in the group.
+    pub index: usize,
+    /// The problem.
+    pub error: MeaningError,
+}
+
+/// Fails with `NotPositive` unless `value > 0`.
+pub(crate) fn positive(
+    record: &'static str,
+    what: &'static str,
+    label: &'static str,
+    index: usize,
+    value: f64,
+) -> Result<f64, Invalid> {
+    if value > 0.0 {
+        Ok(value)
+    } else {
+        let error = MeaningError::NotPositive {
+            record,
+            what,
+            value,
+        };
+        Err(Invalid {
+            label,
+            index,
+            error,
+        })
+    }
+}
+
+/// `v / |v|` computed without overflow or underflow in `|v|`; `None` for the zero vector.
+pub fn unit(v: DVec3) -> Option<DVec3> {
+    let scale = v.abs().max_element();
+    if scale == 0.0 || !scale.is_finite() {
+        return None;
+    }
+    let w = v / scale;
+    Some(w / w.length())
+}
+
+/// Like [`unit`], but the error names the record's vector.
+pub(crate) fn unit_or_zero_error(
+    v: DVec3,
+    record: &'static str,
+    label: &'static str,
+) -> Result<DVec3, Invalid> {
+    unit(v).ok_or(Invalid {
+        label,
+        index: 0,
+        error: MeaningError::ZeroVector {
+            record,
+            what: label,
+        },
+    })
+}
+
+/// Where a ray meets a shape, for shading.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Surface {
+    /// The hit point, world coordinates.
+    pub point: DVec3,
+    /// Unit normal, world coordinates, never flipped toward the viewer (spec §4.4).
+    pub normal: DVec3,
+    /// Plane-frame coordinates (q.x, q.y) for tiles and textures (spec §5.3); zero otherwise.
+    pub plane_xy: glam::DVec2,
+}
+
+/// Every shape of spec §3.2-§3.3 that can be hit.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Shape {
+    /// 13 and 19: a sphere.
+    Sphere(Sphere),
+    /// 14 and 20: an infinite plane.
+    Plane(Plane),
+    /// 15 and 17: a rectangle of a plane.
+    FinitePlane(FinitePlane),
+    /// 16: an infinite plane with a frame for the tile grid.
+    FramedPlane(PlaneFrame),
+    /// 21: a finite circular paraboloid.
+    Paraboloid(Paraboloid),
+    /// 22: a finite open cylinder.
+    Cylinder(Cylinder),
+    /// 23: a finite open cone.
+    Cone(Cone),
+    /// 24: a finite hyperboloid of one sheet.
+    Hyperboloid(Hyperboloid),
+    /// `QUADRIC`: the general quadric x^T Q x = 0.
+    Quadric(Quadric),
+}
+
+impl Shape {
+    /// The distance along `ray` to this shape under the legacy rules of spec §5, if any.
+    /// The caller keeps only `t > 0` (spec §4.6): a sphere may report a negative `t`.
+    #[inline]
+    pub fn hit(&self, ray: &Ray) -> Option<f64> {
+        match self {
+            Shape::Sphere(s) => s.hit(ray),
+            Shape::Plane(s) => s.hit(ray),
+            Shape::FinitePlane(s) => s.hit(ray),
+            Shape::FramedPlane(s) => s.plane.hit(ray),
+            Shape::Paraboloid(s) => s.hit(ray),
+            Shape::Cylinder(s) => s.hit(ray),
+            Shape::Cone(s) => s.hit(ray),
+            Shape::Hyperboloid(s) => s.hit(ray),
+            Shape::Quadric(s) => s.hit(ray),
+        }
+    }
+
+    /// Point and normal where `ray` meets this shape at distance `t` (from [`Shape::hit`]).
+    pub fn surface(&self, ray: &Ray, t: f64) -> Surface {
+        let point = ray.base + t * ray.dir;
+        let (normal, plane_xy) = match self {
+            Shape::Sphere(s) => (s.normal(point), glam::DVec2::ZERO),
+            Shape::Plane(s) => (s.normal, glam::DVec2::ZERO),
+            Shape::FinitePlane(s) => (s.frame.plane.normal, s.frame.plane_xy(point)),
+            Shape::FramedPlane(s) => (s.plane.normal, s.plane_xy(point)),
+            Shape::Paraboloid(s) => (s.normal(point), glam::DVec2::ZERO),
+            Shape::Cylinder(s) => (s.normal(point), glam::DVec2::ZERO),
+            Shape::Cone(s) => (s.normal(point), glam::DVec2::ZERO),
+            Shape::Hyperboloid(s) => (s.normal(point), glam::DVec2::ZERO),
+            Shape::Quadric(s) => (s.normal(point), glam::DVec2::ZERO),
+        };
+        // A zero gradient (a cone's apex, a degenerate quadric) has no direction; face the
+        // ray so that the point is shaded as seen from the front instead of turning to NaN.
+        let normal = if normal.is_finite() && normal != DVec3::ZERO {
+            normal
+        } else {
+            -ray.dir
+        };
+        Surface {
+            point,
+            normal,
+            plane_xy,
+        }
+    }
+}

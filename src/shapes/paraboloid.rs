@@ -1,0 +1,111 @@
+//! The finite circular paraboloid, code 21 (spec §5.6; note 003). Built by
+//!
+//! ```text
+//! 21            paraboloid
+//! 0.2 0.2 0.2   ambient
+//! 2.0 2.0 2.0   diffuse
+//! 1.0 1.0 1.0   specular
+//! 4 3 -4        vertex
+//! 1 0 0         centre line
+//! 2 5           radius at the top and height
+//! ```
+//! Local frame: axis +y, vertex at the origin; surface x² + z² = k y with k = r²/h.
+
+use super::{AxisFrame, Invalid, Ray, positive, solve_quadratic};
+use crate::scene_file::layout::label;
+use glam::DVec3;
+
+/// A paraboloid with its frame and scale k = r²/h.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Paraboloid {
+    /// Vertex, `rotmat` and `irot`.
+    pub frame: AxisFrame,
+    /// Radius at y = h, > 0.
+    pub radius: f64,
+    /// Height, > 0.
+    pub height: f64,
+    /// k = r²/h (note 003's `parab->scale`).
+    pub k: f64,
+}
+
+impl Paraboloid {
+    /// Validates radius and height, builds the frame and k.
+    pub fn new(
+        vertex: DVec3,
+        centre_line: DVec3,
+        radius: f64,
+        height: f64,
+    ) -> Result<Self, Invalid> {
+        const RECORD: &str = "paraboloid";
+        let frame = AxisFrame::new(vertex, centre_line, RECORD)?;
+        let radius = positive(RECORD, "radius", label::RADIUS_HEIGHT, 0, radius)?;
+        let height = positive(RECORD, "height", label::RADIUS_HEIGHT, 1, height)?;
+        Ok(Paraboloid {
+            frame,
+            radius,
+            height,
+            k: radius * radius / height,
+        })
+    }
+
+    /// a = dx² + dz², b = 2(bx dx + bz dz) - k dy, c = bx² + bz² - k by; smallest positive
+    /// root with 0 <= y <= h. Along the axis a = 0 and the equation is linear.
+    #[inline]
+    pub fn hit(&self, ray: &Ray) -> Option<f64> {
+        let (b, d) = self.frame.to_local(ray);
+        let qa = d.x * d.x + d.z * d.z;
+        let qb = 2.0 * (b.x * d.x + b.z * d.z) - self.k * d.y;
+        let qc = b.x * b.x + b.z * b.z - self.k * b.y;
+        AxisFrame::first_in_bounds(solve_quadratic(qa, qb, qc), b.y, d.y, 0.0, self.height)
+    }
+
+    /// Local normal (2x, -k, 2z), turned back by `irot`.
+    #[inline]
+    pub fn normal(&self, point: DVec3) -> DVec3 {
+        let p = self.frame.point_to_local(point);
+        self.frame
+            .normal_to_world(DVec3::new(2.0 * p.x, -self.k, 2.0 * p.z))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn bowl() -> Paraboloid {
+        // Vertex at the origin opening up +y: k = 4 / 4 = 1, so x² + z² = y.
+        Paraboloid::new(DVec3::ZERO, DVec3::Y, 2.0, 4.0).unwrap()
+    }
+
+    #[test]
+    fn scale_is_r_squared_over_h() {
+        assert_eq!(bowl().k, 1.0);
+    }
+
+    #[test]
+    fn ray_down_the_axis_meets_the_vertex_through_the_linear_case() {
+        let ray = Ray {
+            base: DVec3::new(0.0, 3.0, 0.0),
+            dir: DVec3::NEG_Y,
+        };
+        assert_eq!(bowl().hit(&ray), Some(3.0));
+        let normal = bowl().normal(DVec3::ZERO);
+        assert_eq!(normal, DVec3::NEG_Y);
+    }
+
+    #[test]
+    fn horizontal_ray_hits_where_x_squared_is_y() {
+        // At y = 1 the radius is 1: from x = -5 the wall is 4 away.
+        let ray = Ray {
+            base: DVec3::new(-5.0, 1.0, 0.0),
+            dir: DVec3::X,
+        };
+        assert_eq!(bowl().hit(&ray), Some(4.0));
+        // Above the rim (y = 4.5 > h) it misses.
+        let high = Ray {
+            base: DVec3::new(-5.0, 4.5, 0.0),
+            dir: DVec3::X,
+        };
+        assert_eq!(bowl().hit(&high), None);
+    }
+}

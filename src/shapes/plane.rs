@@ -1,0 +1,90 @@
+//! The infinite plane (spec §5.1). Built by
+//!
+//! ```text
+//! 14            plane
+//! 0 2 0         ambient
+//! 0 0 0         diffuse
+//! 0 0 0         specular
+//! 0 1 0         normal
+//! 0 -4 0        point
+//! ```
+//! (code 20, the procedural plane, adds a shader index line).
+
+use super::{Invalid, Ray, unit_or_zero_error};
+use crate::scene_file::layout::label;
+use glam::DVec3;
+
+/// A plane through `point` with unit `normal`, used as given (never flipped, spec §4.4).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Plane {
+    /// Unit normal.
+    pub normal: DVec3,
+    /// A point of the plane.
+    pub point: DVec3,
+}
+
+impl Plane {
+    /// Normalises the normal; a zero normal is an error.
+    pub fn new(normal: DVec3, point: DVec3, record: &'static str) -> Result<Plane, Invalid> {
+        let normal = unit_or_zero_error(normal, record, label::NORMAL)?;
+        Ok(Plane { normal, point })
+    }
+
+    /// t = N·(Q - B) / N·D; a miss when N·D = 0, t < 0, or the hit has z > 0 (spec §5.1).
+    #[inline]
+    pub fn hit(&self, ray: &Ray) -> Option<f64> {
+        let denominator = self.normal.dot(ray.dir);
+        if denominator == 0.0 {
+            return None;
+        }
+        let t = self.normal.dot(self.point - ray.base) / denominator;
+        if t < 0.0 || ray.base.z + t * ray.dir.z > 0.0 {
+            return None;
+        }
+        Some(t)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ray_hits_the_floor_at_the_distance_of_the_formula() {
+        let plane = Plane::new(
+            DVec3::new(0.0, 2.0, 0.0),
+            DVec3::new(0.0, -4.0, 0.0),
+            "plane",
+        );
+        let plane = plane.unwrap();
+        assert_eq!(plane.normal, DVec3::Y);
+        let dir = DVec3::new(0.0, -0.6, -0.8);
+        let ray = Ray {
+            base: DVec3::ZERO,
+            dir,
+        };
+        // Descending 4 units at 0.6 per unit length takes t = 4 / 0.6.
+        let t = plane.hit(&ray).unwrap();
+        assert!((t - 4.0 / 0.6).abs() < 1e-14, "{t}");
+    }
+
+    #[test]
+    fn parallel_backward_and_in_front_of_the_screen_rays_miss() {
+        let wall = Plane::new(DVec3::Z, DVec3::new(0.0, 0.0, -5.0), "plane").unwrap();
+        let from_eye = |dir| Ray {
+            base: DVec3::new(0.0, 0.0, 3.0),
+            dir,
+        };
+        assert_eq!(wall.hit(&from_eye(DVec3::X)), None);
+        assert_eq!(wall.hit(&from_eye(DVec3::Z)), None);
+        // A plane z = 1 lies between the eye and the screen: its hits have z > 0.
+        let near = Plane::new(DVec3::Z, DVec3::new(0.0, 0.0, 1.0), "plane").unwrap();
+        assert_eq!(near.hit(&from_eye(DVec3::NEG_Z)), None);
+        assert_eq!(wall.hit(&from_eye(DVec3::NEG_Z)), Some(8.0));
+    }
+
+    #[test]
+    fn zero_normal_is_an_error() {
+        assert!(Plane::new(DVec3::ZERO, DVec3::ZERO, "plane").is_err());
+    }
+}

@@ -1,0 +1,13 @@
+//! The integration tests, linked into one binary (STYLE.md: one binary is cheaper to build
+//! and link on a 2-core CI than one per file).
+
+#[path = "integration/common.rs"]
+mod common;
+#[path = "integration/course_scenes.rs"]
+mod course_scenes;
+#[path = "integration/errors.rs"]
+mod errors;
+#[path = "integration/examples.rs"]
+mod examples;
+#[path = "integration/robustness.rs"]
+mod robustness;
