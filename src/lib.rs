@@ -3,7 +3,8 @@
 //!
 //! A scene flows text → records → typed scene → pixels → file:
 //! [`scene_file`] reads the text into records (syntax only), [`scene`] validates them into
-//! typed lights and [`shapes`], and the renderer traces them as the course's C program did.
+//! typed lights and [`shapes`], [`render`] traces them as the course's C program did, and
+//! [`image_output`] writes PPM or PNG.
 //! The format and the rendering rules are those of the project's spec (`spec §N` in the
 //! comments); the formulas are those of the course notes.
 //!
@@ -15,9 +16,12 @@
 //! ```
 
 pub mod error;
+pub mod image_output;
+pub mod render;
 pub mod scene;
 pub mod scene_file;
 pub mod shapes;
 
 pub use error::SceneError;
+pub use render::{Image, Options, render};
 pub use scene::{Scene, dump, load};

@@ -9,5 +9,7 @@ mod course_scenes;
 mod errors;
 #[path = "integration/examples.rs"]
 mod examples;
+#[path = "integration/pixels.rs"]
+mod pixels;
 #[path = "integration/robustness.rs"]
 mod robustness;

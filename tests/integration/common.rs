@@ -41,3 +41,32 @@ pub fn course_scenes() -> Option<PathBuf> {
         None
     }
 }
+
+/// A reviewable picture of a scene for a snapshot: a 32x24 render as text P3, and the
+/// FNV-1a hash of the PPM at the default size, which locks the full image down.
+pub fn image_document(scene: &legacy_rt::Scene) -> String {
+    use legacy_rt::render::{DEFAULT_MAX_DIST, Options, render};
+    let options = |(width, height): (u64, u64)| Options {
+        width: width as usize,
+        height: height as usize,
+        max_dist: DEFAULT_MAX_DIST,
+    };
+    let (small, _) = render(scene, &options((32, 24)), |_| {});
+    let mut text = String::from("P3\n32 24\n255\n");
+    for row in small.pixels.chunks(small.width) {
+        let row: Vec<String> = row
+            .iter()
+            .map(|p| format!("{:3} {:3} {:3}", p[0], p[1], p[2]))
+            .collect();
+        text.push_str(&row.join("  "));
+        text.push('\n');
+    }
+    let size = scene.default_size();
+    let (full, _) = render(scene, &options(size), |_| {});
+    let ppm = legacy_rt::image_output::ppm(&full);
+    let hash = ppm.iter().fold(0xcbf29ce484222325u64, |h, &b| {
+        (h ^ u64::from(b)).wrapping_mul(0x100000001b3)
+    });
+    text.push_str(&format!("{}x{} PPM fnv1a {hash:016x}\n", size.0, size.1));
+    text
+}

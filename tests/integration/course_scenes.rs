@@ -1,10 +1,10 @@
 //! The course's own scene files (`../shared/course-scenes`) all load. Skipped, with a
 //! message, where that folder is absent.
 
-use super::common::{course_scenes, scene_files};
+use super::common::{course_scenes, image_document, scene_files};
 
 #[test]
-fn every_course_scene_loads_and_its_dump_is_reviewed() {
+fn every_course_scene_loads_and_its_dump_and_image_are_reviewed() {
     let Some(dir) = course_scenes() else { return };
     let files = scene_files(&dir);
     assert!(
@@ -18,7 +18,12 @@ fn every_course_scene_loads_and_its_dump_is_reviewed() {
             .unwrap_or_else(|error| panic!("{} must load:\n{error}", path.display()));
         // Only the dump is kept: the course's text is theirs, the numbers are facts.
         let name = path.file_stem().unwrap().to_string_lossy().to_string();
-        insta::assert_snapshot!(format!("course_dump_{name}"), legacy_rt::dump(&scene));
+        let document = format!(
+            "{}\n---- image ----\n{}",
+            legacy_rt::dump(&scene),
+            image_document(&scene)
+        );
+        insta::assert_snapshot!(format!("course_{name}"), document);
     }
 }
 

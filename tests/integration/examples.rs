@@ -1,16 +1,20 @@
-//! Every scene under `examples/` loads; its `--dump` is locked down by a snapshot.
+//! Every scene under `examples/` loads and renders; its `--dump` and its image are locked
+//! down by a snapshot.
 
-use super::common::{run, scene_files};
+use super::common::{image_document, run, scene_files};
 use std::path::Path;
 
 #[test]
-fn every_example_loads_and_its_dump_is_reviewed() {
+fn every_example_loads_and_its_dump_and_image_are_reviewed() {
     insta::glob!("../../examples", "*.txt", |path| {
         let text = std::fs::read_to_string(path).unwrap();
         let scene = legacy_rt::load(&text)
             .unwrap_or_else(|error| panic!("{} must load:\n{error}", path.display()));
         let dump = legacy_rt::dump(&scene);
-        insta::assert_snapshot!(format!("{text}\n---- dump ----\n{dump}"));
+        let image = image_document(&scene);
+        insta::assert_snapshot!(format!(
+            "{text}\n---- dump ----\n{dump}\n---- image ----\n{image}"
+        ));
     });
 }
 

@@ -1,0 +1,271 @@
+//! Pixels: the course's ray tracer (spec §4).
+//!
+//! [`render`] casts one ray per pixel through the world window (§4.1) and [`ray_trace`]
+//! follows it: the closest hit (§4.6), ambient plus the diffuse light of every lamp that
+//! the hit point sees (§4.3), divided by the distance travelled so far (§4.2), plus the
+//! mirror reflection weighted by the specular triple (§4.5).
+
+mod shading;
+
+pub use shading::{Screen, material_at};
+
+use crate::scene::{Light, Scene};
+use crate::shapes::{Ray, Surface, unit};
+use glam::{DVec2, DVec3};
+
+/// The default MAX_DIST of spec §4.2.
+pub const DEFAULT_MAX_DIST: f64 = 32.0;
+
+/// A cap on mirror bounces, far beyond any real scene: a ray trapped between mirrors that
+/// touch could otherwise bounce without the path length ever reaching MAX_DIST.
+pub const MAX_BOUNCES: usize = 10_000;
+
+/// What to render.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Options {
+    /// Image width in pixels, >= 2.
+    pub width: usize,
+    /// Image height in pixels, >= 2.
+    pub height: usize,
+    /// Paths longer than this are black (spec §4.2).
+    pub max_dist: f64,
+}
+
+/// An 8-bit RGB image, rows top to bottom.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Image {
+    /// Width in pixels.
+    pub width: usize,
+    /// Height in pixels.
+    pub height: usize,
+    /// `width * height` pixels, top row first.
+    pub pixels: Vec<[u8; 3]>,
+}
+
+/// How many rays of each kind a render cast.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Stats {
+    /// One per pixel.
+    pub camera: u64,
+    /// One per light test that got past the cosine and spotlight checks.
+    pub shadow: u64,
+    /// One per mirror bounce.
+    pub reflected: u64,
+}
+
+impl Stats {
+    /// All rays.
+    pub fn total(&self) -> u64 {
+        self.camera + self.shadow + self.reflected
+    }
+}
+
+/// A channel in [0, 1] to a byte: clamp, times 255, truncate (spec §4.7). NaN gives 0.
+#[inline]
+pub fn to_byte(channel: f64) -> u8 {
+    if channel.is_nan() {
+        return 0;
+    }
+    (channel.clamp(0.0, 1.0) * 255.0) as u8
+}
+
+/// The camera of spec §4.1: world x of each column, world y of each row.
+struct Camera {
+    viewpoint: DVec3,
+    xs: Vec<f64>,
+    ys: Vec<f64>,
+}
+
+impl Camera {
+    fn new(scene: &Scene, options: &Options) -> Camera {
+        let axis = |count: usize, size: f64| -> Vec<f64> {
+            let last = (count - 1) as f64;
+            (0..count)
+                .map(|i| i as f64 / last * size - size / 2.0)
+                .collect()
+        };
+        Camera {
+            viewpoint: scene.viewpoint,
+            xs: axis(options.width, scene.window.x),
+            ys: axis(options.height, scene.window.y),
+        }
+    }
+
+    /// The ray through pixel (x, y), (0, 0) at the lower left; `None` if the viewpoint is
+    /// the pixel's own world point (no direction).
+    fn ray(&self, x: usize, y: usize) -> Option<Ray> {
+        let target = DVec3::new(self.xs[x], self.ys[y], 0.0);
+        let dir = unit(target - self.viewpoint)?;
+        Some(Ray {
+            base: self.viewpoint,
+            dir,
+        })
+    }
+}
+
+/// Renders the scene; `progress` is called with the number of rows done after each row.
+pub fn render(scene: &Scene, options: &Options, mut progress: impl FnMut(usize)) -> (Image, Stats) {
+    let camera = Camera::new(scene, options);
+    let tracer = Tracer::new(scene, options);
+    let mut stats = Stats::default();
+    let mut pixels = Vec::with_capacity(options.width * options.height);
+    for row in 0..options.height {
+        let y = options.height - 1 - row;
+        for x in 0..options.width {
+            stats.camera += 1;
+            let colour = match camera.ray(x, y) {
+                Some(ray) => tracer.trace(ray, &mut stats),
+                None => DVec3::ZERO,
+            };
+            pixels.push(colour.to_array().map(to_byte));
+        }
+        progress(row + 1);
+    }
+    let image = Image {
+        width: options.width,
+        height: options.height,
+        pixels,
+    };
+    (image, stats)
+}
+
+/// The colour seen along one ray from the eye (spec §4.2 with total_dist = 0 and no
+/// `last_hit`), before the conversion to bytes.
+pub fn ray_trace(scene: &Scene, options: &Options, ray: Ray) -> DVec3 {
+    Tracer::new(scene, options).trace(ray, &mut Stats::default())
+}
+
+/// The scene and what every ray needs of the options.
+struct Tracer<'a> {
+    scene: &'a Scene,
+    max_dist: f64,
+    screen: Screen,
+}
+
+impl<'a> Tracer<'a> {
+    fn new(scene: &'a Scene, options: &Options) -> Tracer<'a> {
+        let screen = Screen {
+            last_pixel: DVec2::new((options.width - 1) as f64, (options.height - 1) as f64),
+            window: scene.window,
+        };
+        Tracer {
+            scene,
+            max_dist: options.max_dist,
+            screen,
+        }
+    }
+
+    /// The closest object with t > 0 along `ray`, skipping `last_hit`; ties go to the
+    /// earlier object (spec §4.6).
+    #[inline]
+    fn closest_hit(&self, ray: &Ray, last_hit: Option<usize>) -> Option<(usize, f64)> {
+        let mut best: Option<(usize, f64)> = None;
+        for (index, object) in self.scene.objects.iter().enumerate() {
+            if Some(index) == last_hit {
+                continue;
+            }
+            if let Some(t) = object.shape.hit(ray)
+                && t > 0.0
+                && best.is_none_or(|(_, best_t)| t < best_t)
+            {
+                best = Some((index, t));
+            }
+        }
+        best
+    }
+
+    /// Whether any object but `skip` lies on `ray` closer than `dist` (spec §4.3).
+    #[inline]
+    fn blocked(&self, ray: &Ray, skip: usize, dist: f64) -> bool {
+        self.scene
+            .objects
+            .iter()
+            .enumerate()
+            .any(|(index, object)| {
+                index != skip && object.shape.hit(ray).is_some_and(|t| t > 0.0 && t < dist)
+            })
+    }
+
+    /// ray_trace of spec §4.2, with the mirror recursion unrolled into a loop: the colour
+    /// is Σ (S₁ ⊙ … ⊙ Sₖ) ⊙ Iₖ₊₁ / total_distₖ₊₁ over the bounces.
+    fn trace(&self, mut ray: Ray, stats: &mut Stats) -> DVec3 {
+        let mut colour = DVec3::ZERO;
+        let mut weight = DVec3::ONE;
+        let mut total_dist = 0.0;
+        let mut last_hit = None;
+        for _ in 0..=MAX_BOUNCES {
+            if total_dist > self.max_dist {
+                break;
+            }
+            let Some((index, t)) = self.closest_hit(&ray, last_hit) else {
+                break;
+            };
+            total_dist += t;
+            let object = &self.scene.objects[index];
+            let surface = object.shape.surface(&ray, t);
+            let material = material_at(object, &surface, &self.screen);
+            let mut intensity = material.ambient;
+            for light in &self.scene.lights {
+                intensity += self.diffuse(light, index, &surface, material.diffuse, stats);
+            }
+            colour += weight * (intensity / total_dist);
+            if material.specular == DVec3::ZERO {
+                break;
+            }
+            weight *= material.specular;
+            stats.reflected += 1;
+            let d = ray.dir;
+            let n = surface.normal;
+            let Some(dir) = unit(d - 2.0 * d.dot(n) * n) else {
+                break;
+            };
+            ray = Ray {
+                base: surface.point,
+                dir,
+            };
+            last_hit = Some(index);
+        }
+        colour
+    }
+
+    /// One light's diffuse contribution at a hit on object `index` (spec §4.3).
+    #[inline]
+    fn diffuse(
+        &self,
+        light: &Light,
+        index: usize,
+        surface: &Surface,
+        diffuse: DVec3,
+        stats: &mut Stats,
+    ) -> DVec3 {
+        if diffuse == DVec3::ZERO {
+            return DVec3::ZERO;
+        }
+        let to_light = light.location - surface.point;
+        let dist = to_light.length();
+        // A light at the hit point, or so far away that the distance overflowed, has no
+        // direction: no contribution rather than a NaN.
+        if dist.is_nan() || dist <= 0.0 || dist.is_infinite() {
+            return DVec3::ZERO;
+        }
+        let u = to_light / dist;
+        let cos = surface.normal.dot(u);
+        if cos.is_nan() || cos <= 0.0 {
+            return DVec3::ZERO;
+        }
+        if let Some(beam) = &light.beam
+            && (-u).dot(beam.direction) <= beam.cos_limit
+        {
+            return DVec3::ZERO;
+        }
+        stats.shadow += 1;
+        let shadow = Ray {
+            base: surface.point,
+            dir: u,
+        };
+        if self.blocked(&shadow, index, dist) {
+            return DVec3::ZERO;
+        }
+        diffuse * light.emissivity * (cos / dist)
+    }
+}
