@@ -1,10 +1,14 @@
 //! The integration tests, linked into one binary (STYLE.md: one binary is cheaper to build
 //! and link on a 2-core CI than one per file).
 
+#[path = "integration/cli.rs"]
+mod cli;
 #[path = "integration/common.rs"]
 mod common;
 #[path = "integration/course_scenes.rs"]
 mod course_scenes;
+#[path = "integration/degenerate.rs"]
+mod degenerate;
 #[path = "integration/errors.rs"]
 mod errors;
 #[path = "integration/examples.rs"]
