@@ -66,6 +66,25 @@ impl AxisFrame {
         unit(self.irot * local_normal).unwrap_or(DVec3::ZERO)
     }
 
+    /// a, b, c for the local ray (b, d) against x² + z² = k y² + rc²: the hyperboloid of
+    /// note 003, and with rc² = 0 its cone.
+    #[inline]
+    pub fn cone_quadratic(b: DVec3, d: DVec3, k: f64, waist_sq: f64) -> (f64, f64, f64) {
+        (
+            d.x * d.x + d.z * d.z - k * d.y * d.y,
+            2.0 * (b.x * d.x + b.z * d.z - k * b.y * d.y),
+            b.x * b.x + b.z * b.z - k * b.y * b.y - waist_sq,
+        )
+    }
+
+    /// The world normal of x² + z² = k y² + rc² at a world point: local (2x, -2k y, 2z)
+    /// turned back by `irot` (zero at a cone's apex).
+    #[inline]
+    pub fn cone_normal(&self, point: DVec3, k: f64) -> DVec3 {
+        let p = self.point_to_local(point);
+        self.normal_to_world(DVec3::new(2.0 * p.x, -2.0 * k * p.y, 2.0 * p.z))
+    }
+
     /// The smallest positive root whose local y lies in `[low, high]` (spec §5.6).
     #[inline]
     pub fn first_in_bounds(

@@ -49,19 +49,14 @@ impl Cone {
     #[inline]
     pub fn hit(&self, ray: &Ray) -> Option<f64> {
         let (b, d) = self.frame.to_local(ray);
-        let k = self.k;
-        let qa = d.x * d.x + d.z * d.z - k * d.y * d.y;
-        let qb = 2.0 * (b.x * d.x + b.z * d.z - k * b.y * d.y);
-        let qc = b.x * b.x + b.z * b.z - k * b.y * b.y;
+        let (qa, qb, qc) = AxisFrame::cone_quadratic(b, d, self.k, 0.0);
         AxisFrame::first_in_bounds(solve_quadratic(qa, qb, qc), b.y, d.y, 0.0, self.height)
     }
 
     /// Local normal (2x, -2k y, 2z), turned back by `irot`; zero at the apex.
     #[inline]
     pub fn normal(&self, point: DVec3) -> DVec3 {
-        let p = self.frame.point_to_local(point);
-        self.frame
-            .normal_to_world(DVec3::new(2.0 * p.x, -2.0 * self.k * p.y, 2.0 * p.z))
+        self.frame.cone_normal(point, self.k)
     }
 }
 
