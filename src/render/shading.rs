@@ -26,10 +26,7 @@ pub fn material_at(object: &Object, surface: &Surface, screen: &Screen) -> Mater
     match &object.pattern {
         Pattern::Plain => object.material,
         Pattern::Tiles { tile, background } => {
-            let q = surface.plane_xy;
-            let relx = trunc(10000.0 + q.x / tile.x);
-            let rely = trunc(10000.0 + q.y / tile.y);
-            if (relx + rely) % 2 != 0 {
+            if foreground_tile(surface.plane_xy, *tile) {
                 object.material
             } else {
                 *background
@@ -59,6 +56,15 @@ pub fn material_at(object: &Object, surface: &Surface, screen: &Screen) -> Mater
             }
         }
     }
+}
+
+/// relx = trunc(10000 + q.x/w), rely = trunc(10000 + q.y/h); the foreground material
+/// applies where relx + rely is odd (spec §5.4). The parity of the sum is the exclusive-or
+/// of the low bits, which cannot overflow where both truncations saturate.
+fn foreground_tile(q: DVec2, tile: DVec2) -> bool {
+    let relx = trunc(10000.0 + q.x / tile.x);
+    let rely = trunc(10000.0 + q.y / tile.y);
+    (relx ^ rely) & 1 == 1
 }
 
 /// The texel under plane coordinates `q`, each channel byte / 255 (spec §5.8).
@@ -103,6 +109,26 @@ fn colour_wheel(ambient: DVec3, v: DVec3) -> DVec3 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn tile_parity_is_that_of_relx_plus_rely() {
+        let unit = DVec2::ONE;
+        // (0.5, 0.5): 10000 + 10000 even, background; (1.5, 0.5): 10001 + 10000 odd.
+        assert!(!foreground_tile(DVec2::new(0.5, 0.5), unit));
+        assert!(foreground_tile(DVec2::new(1.5, 0.5), unit));
+        // Negative q truncates toward zero: -0.5 gives 9999, -1.5 gives 9998.
+        assert!(foreground_tile(DVec2::new(-0.5, 0.5), unit));
+        assert!(!foreground_tile(DVec2::new(-1.5, 0.5), unit));
+    }
+
+    #[test]
+    fn tile_parity_does_not_overflow_where_truncation_saturates() {
+        // A valid tile size of 1e-300 makes q/w infinite: both truncations give i64::MAX,
+        // whose sum overflows (it panicked before).
+        let tiny = DVec2::splat(1e-300);
+        assert!(!foreground_tile(DVec2::new(1.0, 1.0), tiny));
+        assert!(foreground_tile(DVec2::new(1.0, -1.0), tiny));
+    }
 
     #[test]
     fn stripes_parity_follows_the_formula() {
