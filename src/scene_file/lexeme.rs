@@ -123,7 +123,7 @@ fn hex_value(int: &str, frac: &str, exp: Option<&str>) -> f64 {
                 .unwrap_or(if e.contains('-') { -100_000 } else { 100_000 })
         })
         .unwrap_or(0);
-    let total = (exp + shift).clamp(-20_000, 20_000) as i32;
+    let total = exp.saturating_add(shift).clamp(-20_000, 20_000) as i32;
     // Scale in steps that cannot overflow or underflow on the way.
     let mut value = mantissa as f64;
     let mut remaining = total;
@@ -232,6 +232,10 @@ mod tests {
         // 0x1.00000000000008 is exactly half way between 1 and the next double: ties to even.
         assert_eq!(value("0x1.00000000000008"), (1.0, ""));
         assert_eq!(value("0x1.000000000000081"), (1.0 + f64::EPSILON, ""));
+        // An exponent at the edge of i64 plus extra digits saturates instead of overflowing.
+        let huge = number("0x11111111111111111p9223372036854775807").unwrap().1;
+        assert!(matches!(huge, NumberToken::NonFinite(_)), "{huge:?}");
+        assert_eq!(value("0x11111111111111111p-9223372036854775808"), (0.0, ""));
     }
 
     #[test]
