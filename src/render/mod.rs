@@ -269,3 +269,18 @@ impl<'a> Tracer<'a> {
         diffuse * light.emissivity * (cos / dist)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bytes_are_clamped_truncated_and_nan_free() {
+        assert_eq!(to_byte(0.625), 159); // 159.375, the debug scene's centre (spec §6)
+        assert_eq!(to_byte(0.999), 254); // 254.745 truncates, it does not round
+        assert_eq!(to_byte(1.5), 255);
+        assert_eq!(to_byte(-0.5), 0);
+        assert_eq!(to_byte(f64::INFINITY), 255);
+        assert_eq!(to_byte(f64::NAN), 0);
+    }
+}

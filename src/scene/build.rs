@@ -78,6 +78,12 @@ fn scalar(group: &Group) -> f64 {
     group.numbers()[0].value
 }
 
+/// Normal, point and x direction of a framed plane (15, 16, 17).
+fn frame_vectors(record: &Record) -> (DVec3, DVec3, DVec3) {
+    let [normal, point, xdir] = [NORMAL, POINT, XDIR].map(|l| vec3(record.group(l)));
+    (normal, point, xdir)
+}
+
 fn material(record: &Record, labels: [&str; 3]) -> Material {
     let [ambient, diffuse, specular] = labels.map(|l| vec3(record.group(l)));
     Material {
@@ -169,8 +175,7 @@ fn object(record: &Record) -> Result<Object, Invalid> {
             Shape::Plane(plane)
         }
         15 | 17 => {
-            let (normal, point, xdir) =
-                (vec3(group(NORMAL)), vec3(group(POINT)), vec3(group(XDIR)));
+            let (normal, point, xdir) = frame_vectors(record);
             let plane = FinitePlane::new(normal, point, xdir, pair(group(SIZE)), name)?;
             if record.layout.code == 17 {
                 pattern = texture(record)?;
@@ -178,8 +183,7 @@ fn object(record: &Record) -> Result<Object, Invalid> {
             Shape::FinitePlane(plane)
         }
         16 => {
-            let (normal, point, xdir) =
-                (vec3(group(NORMAL)), vec3(group(POINT)), vec3(group(XDIR)));
+            let (normal, point, xdir) = frame_vectors(record);
             let frame = PlaneFrame::new(normal, point, xdir, name)?;
             let tile = pair(group(TILE_SIZE));
             positive(name, "tile width", TILE_SIZE, 0, tile.x)?;

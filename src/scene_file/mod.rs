@@ -111,18 +111,12 @@ pub(crate) fn read(text: &str) -> Result<SceneText, Pending> {
             .collect(),
         split: None,
     };
-    let result = read_all(&mut reader);
     // A group that ran on across a line break is legal (scanf reads that way), but it is
     // also what a missing number looks like, and the error then shows up records later.
-    result
-        .map_err(|error| match &reader.split {
-            Some(split) => error.with_note(split.clone()),
-            None => error,
-        })
-        .map(|text| SceneText {
-            split: reader.split.take(),
-            ..text
-        })
+    read_all(&mut reader).map_err(|error| match &reader.split {
+        Some(split) => error.with_note(split.clone()),
+        None => error,
+    })
 }
 
 fn read_all(reader: &mut Reader<'_>) -> Result<SceneText, Pending> {
@@ -147,7 +141,7 @@ fn read_all(reader: &mut Reader<'_>) -> Result<SceneText, Pending> {
         window,
         viewpoint,
         records,
-        split: None,
+        split: reader.split.take(),
     })
 }
 

@@ -183,3 +183,24 @@ impl Shape {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn unit_has_no_direction_for_zero_and_survives_extreme_lengths() {
+        assert_eq!(unit(DVec3::ZERO), None);
+        // |v|² overflows (1e200²) or underflows (1e-200²) in f64: a plain normalise loses
+        // the direction, the scaled form gives the exact unit vector.
+        assert_eq!(
+            unit(DVec3::new(0.0, 3e200, 4e200)),
+            Some(DVec3::new(0.0, 0.6, 0.8))
+        );
+        assert_eq!(
+            unit(DVec3::new(3e-200, 0.0, 4e-200)),
+            Some(DVec3::new(0.6, 0.0, 0.8))
+        );
+        assert!(!DVec3::new(0.0, 3e200, 4e200).normalize().is_normalized());
+    }
+}
