@@ -27,6 +27,7 @@ fn main() {
         width: 1024,
         height: 768,
         max_dist: DEFAULT_MAX_DIST,
+        kernel: Default::default(),
     };
     println!("1024x768, single thread, median of {runs} runs");
     println!(

@@ -3,6 +3,7 @@
 use clap::Parser;
 use legacy_rt::image_output::{self, Format};
 use legacy_rt::render::{self, DEFAULT_MAX_DIST};
+use legacy_rt::shapes::kernel::KernelChoice;
 use std::io::{IsTerminal, Read};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -21,6 +22,7 @@ Examples:
   legacy-rt -o image.png < scene.txt           PNG (by the file's extension)
   legacy-rt --max-dist 64 < scene.txt > image.ppm
   legacy-rt --dump < scene.txt                 the typed scene, with precomputed values
+  legacy-rt --kernel textbook < s.txt > t.ppm  as a tracer using the notes' root formula
 
 The scene is read from standard input; the image goes to standard output (or -o FILE);
 errors go to standard error with the line and column to fix, and then nothing at all is
@@ -53,6 +55,22 @@ struct Args {
     /// rendering it
     #[arg(long)]
     dump: bool,
+
+    /// How hit distances are computed: accurate (within 4 ulps of the exact root),
+    /// stable (the notes' coefficients, cancellation-free roots), textbook (the notes'
+    /// (-b ± sqrt(b² - 4ac)) / 2a, as most students' tracers do), textbook-f32 (the same
+    /// in single precision). Render with textbook to see where a tracer's speckles and
+    /// missing pixels come from; see docs/speed-vs-error.md
+    #[arg(long, value_name = "KERNEL", default_value = "accurate", value_parser = kernel)]
+    kernel: KernelChoice,
+}
+
+/// Parses a `--kernel` name.
+fn kernel(name: &str) -> Result<KernelChoice, String> {
+    KernelChoice::from_name(name).ok_or_else(|| {
+        let names: Vec<_> = KernelChoice::ALL.iter().map(|k| k.name()).collect();
+        format!("expected one of: {}", names.join(", "))
+    })
 }
 
 /// An error of the command line or of the output, with its exit status.
@@ -135,6 +153,7 @@ fn run(args: &Args) -> Result<(), Failure> {
         width: width as usize,
         height: height as usize,
         max_dist: args.max_dist,
+        kernel: args.kernel,
     };
     let bar = std::io::stderr().is_terminal().then(|| {
         let bar = indicatif::ProgressBar::new(height);

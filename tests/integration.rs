@@ -1,6 +1,8 @@
 //! The integration tests, linked into one binary (STYLE.md: one binary is cheaper to build
 //! and link on a 2-core CI than one per file).
 
+#[path = "integration/accuracy.rs"]
+mod accuracy;
 #[path = "integration/cli.rs"]
 mod cli;
 #[path = "integration/common.rs"]
@@ -17,3 +19,5 @@ mod examples;
 mod pixels;
 #[path = "integration/robustness.rs"]
 mod robustness;
+#[path = "integration/scale.rs"]
+mod scale;

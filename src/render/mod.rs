@@ -10,8 +10,10 @@ mod shading;
 pub use shading::{Screen, material_at};
 
 use crate::scene::{Light, Scene};
+use crate::shapes::kernel::{Accurate, Kernel, KernelChoice, StableRoots, Textbook, TextbookF32};
 use crate::shapes::{Ray, Surface, unit};
 use glam::{DVec2, DVec3};
+use std::marker::PhantomData;
 
 /// The default MAX_DIST of spec §4.2.
 pub const DEFAULT_MAX_DIST: f64 = 32.0;
@@ -29,6 +31,20 @@ pub struct Options {
     pub height: usize,
     /// Paths longer than this are black (spec §4.2).
     pub max_dist: f64,
+    /// How ray-shape distances are computed; [`KernelChoice::Accurate`] unless comparing.
+    pub kernel: KernelChoice,
+}
+
+impl Options {
+    /// A `width` x `height` render with the default MAX_DIST and the shipped kernel.
+    pub fn new(width: usize, height: usize) -> Options {
+        Options {
+            width,
+            height,
+            max_dist: DEFAULT_MAX_DIST,
+            kernel: KernelChoice::Accurate,
+        }
+    }
 }
 
 /// An 8-bit RGB image, rows top to bottom.
@@ -104,9 +120,22 @@ impl Camera {
 }
 
 /// Renders the scene; `progress` is called with the number of rows done after each row.
-pub fn render(scene: &Scene, options: &Options, mut progress: impl FnMut(usize)) -> (Image, Stats) {
+pub fn render(scene: &Scene, options: &Options, progress: impl FnMut(usize)) -> (Image, Stats) {
+    match options.kernel {
+        KernelChoice::Accurate => render_with::<Accurate>(scene, options, progress),
+        KernelChoice::Stable => render_with::<StableRoots>(scene, options, progress),
+        KernelChoice::Textbook => render_with::<Textbook>(scene, options, progress),
+        KernelChoice::TextbookF32 => render_with::<TextbookF32>(scene, options, progress),
+    }
+}
+
+fn render_with<K: Kernel>(
+    scene: &Scene,
+    options: &Options,
+    mut progress: impl FnMut(usize),
+) -> (Image, Stats) {
     let camera = Camera::new(scene, options);
-    let tracer = Tracer::new(scene, options);
+    let tracer = Tracer::<K>::new(scene, options);
     let mut stats = Stats::default();
     let mut pixels = Vec::with_capacity(options.width * options.height);
     for row in 0..options.height {
@@ -132,18 +161,27 @@ pub fn render(scene: &Scene, options: &Options, mut progress: impl FnMut(usize))
 /// The colour seen along one ray from the eye (spec §4.2 with total_dist = 0 and no
 /// `last_hit`), before the conversion to bytes.
 pub fn ray_trace(scene: &Scene, options: &Options, ray: Ray) -> DVec3 {
-    Tracer::new(scene, options).trace(ray, &mut Stats::default())
+    let mut stats = Stats::default();
+    match options.kernel {
+        KernelChoice::Accurate => Tracer::<Accurate>::new(scene, options).trace(ray, &mut stats),
+        KernelChoice::Stable => Tracer::<StableRoots>::new(scene, options).trace(ray, &mut stats),
+        KernelChoice::Textbook => Tracer::<Textbook>::new(scene, options).trace(ray, &mut stats),
+        KernelChoice::TextbookF32 => {
+            Tracer::<TextbookF32>::new(scene, options).trace(ray, &mut stats)
+        }
+    }
 }
 
-/// The scene and what every ray needs of the options.
-struct Tracer<'a> {
+/// The scene and what every ray needs of the options; `K` computes the hits.
+struct Tracer<'a, K> {
     scene: &'a Scene,
     max_dist: f64,
     screen: Screen,
+    kernel: PhantomData<K>,
 }
 
-impl<'a> Tracer<'a> {
-    fn new(scene: &'a Scene, options: &Options) -> Tracer<'a> {
+impl<'a, K: Kernel> Tracer<'a, K> {
+    fn new(scene: &'a Scene, options: &Options) -> Tracer<'a, K> {
         let screen = Screen {
             last_pixel: DVec2::new((options.width - 1) as f64, (options.height - 1) as f64),
             window: scene.window,
@@ -152,6 +190,7 @@ impl<'a> Tracer<'a> {
             scene,
             max_dist: options.max_dist,
             screen,
+            kernel: PhantomData,
         }
     }
 
@@ -164,7 +203,7 @@ impl<'a> Tracer<'a> {
             if Some(index) == last_hit {
                 continue;
             }
-            if let Some(t) = object.shape.hit(ray)
+            if let Some(t) = object.shape.hit_with::<K>(ray)
                 && t > 0.0
                 && best.is_none_or(|(_, best_t)| t < best_t)
             {
@@ -182,7 +221,11 @@ impl<'a> Tracer<'a> {
             .iter()
             .enumerate()
             .any(|(index, object)| {
-                index != skip && object.shape.hit(ray).is_some_and(|t| t > 0.0 && t < dist)
+                index != skip
+                    && object
+                        .shape
+                        .hit_with::<K>(ray)
+                        .is_some_and(|t| t > 0.0 && t < dist)
             })
     }
 

@@ -103,24 +103,24 @@ impl Dump {
                 self.matrix("frame", s.rot);
             }
             Shape::Paraboloid(s) => {
-                self.axis("vertex", &s.frame);
+                self.axis("vertex", &s.equation.frame);
                 self.row("radius", &[s.radius]);
                 self.row("height", &[s.height]);
                 self.row("k", &[s.k]);
             }
             Shape::Cylinder(s) => {
-                self.axis("base centre", &s.frame);
+                self.axis("base centre", &s.equation.frame);
                 self.row("radius", &[s.radius]);
                 self.row("height", &[s.height]);
             }
             Shape::Cone(s) => {
-                self.axis("apex", &s.frame);
+                self.axis("apex", &s.equation.frame);
                 self.row("radius", &[s.radius]);
                 self.row("height", &[s.height]);
                 self.row("k", &[s.k]);
             }
             Shape::Hyperboloid(s) => {
-                self.axis("waist centre", &s.frame);
+                self.axis("waist centre", &s.equation.frame);
                 self.row("end radius", &[s.radius]);
                 self.row("half-height", &[s.half_height]);
                 self.row("waist", &[s.waist]);

@@ -14,6 +14,9 @@ pub struct AxisFrame {
     pub rotmat: DMat3,
     /// The inverse rotation, `rotmat` transposed.
     pub irot: DMat3,
+    /// Whether `rotmat` is the identity (a sphere, or a centre line along +y), so that
+    /// the hit test can skip the two matrix products.
+    pub identity: bool,
 }
 
 impl AxisFrame {
@@ -42,63 +45,47 @@ impl AxisFrame {
             centre,
             rotmat: irot.transpose(),
             irot,
+            identity: irot == DMat3::IDENTITY,
         })
+    }
+
+    /// The frame of a sphere: its centre and no rotation.
+    pub fn unrotated(centre: DVec3) -> AxisFrame {
+        AxisFrame {
+            centre,
+            rotmat: DMat3::IDENTITY,
+            irot: DMat3::IDENTITY,
+            identity: true,
+        }
     }
 
     /// The ray in the local frame: B' = rotmat (B - C), D' = rotmat D.
     #[inline]
     pub fn to_local(&self, ray: &Ray) -> (DVec3, DVec3) {
-        (
-            self.rotmat * (ray.base - self.centre),
-            self.rotmat * ray.dir,
-        )
+        (self.point_to_local(ray.base), self.rotate(ray.dir))
     }
 
     /// A world point in the local frame.
     #[inline]
     pub fn point_to_local(&self, point: DVec3) -> DVec3 {
-        self.rotmat * (point - self.centre)
+        self.rotate(point - self.centre)
+    }
+
+    /// rotmat v (v itself when the frame is unrotated).
+    #[inline]
+    pub fn rotate(&self, v: DVec3) -> DVec3 {
+        if self.identity { v } else { self.rotmat * v }
     }
 
     /// A local normal back in the world: unit(irot N'), or zero if N' is zero.
     #[inline]
     pub fn normal_to_world(&self, local_normal: DVec3) -> DVec3 {
-        unit(self.irot * local_normal).unwrap_or(DVec3::ZERO)
-    }
-
-    /// a, b, c for the local ray (b, d) against x² + z² = k y² + rc²: the hyperboloid of
-    /// note 003, and with rc² = 0 its cone.
-    #[inline]
-    pub fn cone_quadratic(b: DVec3, d: DVec3, k: f64, waist_sq: f64) -> (f64, f64, f64) {
-        (
-            d.x * d.x + d.z * d.z - k * d.y * d.y,
-            2.0 * (b.x * d.x + b.z * d.z - k * b.y * d.y),
-            b.x * b.x + b.z * b.z - k * b.y * b.y - waist_sq,
-        )
-    }
-
-    /// The world normal of x² + z² = k y² + rc² at a world point: local (2x, -2k y, 2z)
-    /// turned back by `irot` (zero at a cone's apex).
-    #[inline]
-    pub fn cone_normal(&self, point: DVec3, k: f64) -> DVec3 {
-        let p = self.point_to_local(point);
-        self.normal_to_world(DVec3::new(2.0 * p.x, -2.0 * k * p.y, 2.0 * p.z))
-    }
-
-    /// The smallest positive root whose local y lies in `[low, high]` (spec §5.6).
-    #[inline]
-    pub fn first_in_bounds(
-        roots: super::Roots,
-        base_y: f64,
-        dir_y: f64,
-        low: f64,
-        high: f64,
-    ) -> Option<f64> {
-        let roots = roots?;
-        roots.into_iter().find(|&t| {
-            let y = base_y + t * dir_y;
-            t > 0.0 && (low..=high).contains(&y)
-        })
+        let world = if self.identity {
+            local_normal
+        } else {
+            self.irot * local_normal
+        };
+        unit(world).unwrap_or(DVec3::ZERO)
     }
 }
 

@@ -11,15 +11,16 @@
 //! ```
 //! Local frame: axis +y, apex at the origin; surface x² + z² = k y² with k = (r/h)².
 
-use super::{AxisFrame, Invalid, Ray, positive, solve_quadratic};
+use super::kernel::{Accurate, Kernel};
+use super::{AxisFrame, AxisQuadric, Invalid, Ray, RootRule, positive};
 use crate::scene_file::layout::label;
 use glam::DVec3;
 
 /// A cone with its frame and scale k = (r/h)².
 #[derive(Debug, Clone, PartialEq)]
 pub struct Cone {
-    /// Apex, `rotmat` and `irot`.
-    pub frame: AxisFrame,
+    /// x² - k y² + z² = 0 for 0 <= y <= h, with the frame (apex, `rotmat`, `irot`).
+    pub equation: AxisQuadric,
     /// Radius at y = h, > 0.
     pub radius: f64,
     /// Height, > 0.
@@ -36,11 +37,22 @@ impl Cone {
         let radius = positive(RECORD, "radius", label::RADIUS_HEIGHT, 0, radius)?;
         let height = positive(RECORD, "height", label::RADIUS_HEIGHT, 1, height)?;
         let slope = radius / height;
-        Ok(Cone {
+        let k = slope * slope;
+        let equation = AxisQuadric {
             frame,
+            square: DVec3::new(1.0, -k, 1.0),
+            linear_y: 0.0,
+            constant: 0.0,
+            rule: RootRule::FirstPositiveWithin {
+                low: 0.0,
+                high: height,
+            },
+        };
+        Ok(Cone {
+            equation,
             radius,
             height,
-            k: slope * slope,
+            k,
         })
     }
 
@@ -48,15 +60,14 @@ impl Cone {
     /// smallest positive root with 0 <= y <= h. Along a generator a = 0 (linear case).
     #[inline]
     pub fn hit(&self, ray: &Ray) -> Option<f64> {
-        let (b, d) = self.frame.to_local(ray);
-        let (qa, qb, qc) = AxisFrame::cone_quadratic(b, d, self.k, 0.0);
-        AxisFrame::first_in_bounds(solve_quadratic(qa, qb, qc), b.y, d.y, 0.0, self.height)
+        Accurate::axis_quadric(&self.equation, ray)
     }
 
     /// Local normal (2x, -2k y, 2z), turned back by `irot`; zero at the apex.
     #[inline]
     pub fn normal(&self, point: DVec3) -> DVec3 {
-        self.frame.cone_normal(point, self.k)
+        let frame = &self.equation.frame;
+        frame.normal_to_world(self.equation.gradient(frame.point_to_local(point)))
     }
 }
 

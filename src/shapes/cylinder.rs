@@ -11,15 +11,16 @@
 //! ```
 //! Local frame: axis +y, base centre at the origin; surface x² + z² = r², 0 <= y <= h.
 
-use super::{AxisFrame, Invalid, Ray, positive, solve_quadratic};
+use super::kernel::{Accurate, Kernel};
+use super::{AxisFrame, AxisQuadric, Invalid, Ray, RootRule, positive};
 use crate::scene_file::layout::label;
 use glam::DVec3;
 
 /// A cylinder with its frame and r² precomputed.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Cylinder {
-    /// Base centre, `rotmat` and `irot`.
-    pub frame: AxisFrame,
+    /// x² + z² - r² = 0 for 0 <= y <= h, with the frame (base centre, `rotmat`, `irot`).
+    pub equation: AxisQuadric,
     /// Radius, > 0.
     pub radius: f64,
     /// Height, > 0.
@@ -35,11 +36,22 @@ impl Cylinder {
         let frame = AxisFrame::new(base, centre_line, RECORD)?;
         let radius = positive(RECORD, "radius", label::RADIUS_HEIGHT, 0, radius)?;
         let height = positive(RECORD, "height", label::RADIUS_HEIGHT, 1, height)?;
-        Ok(Cylinder {
+        let radius_sq = radius * radius;
+        let equation = AxisQuadric {
             frame,
+            square: DVec3::new(1.0, 0.0, 1.0),
+            linear_y: 0.0,
+            constant: -radius_sq,
+            rule: RootRule::FirstPositiveWithin {
+                low: 0.0,
+                high: height,
+            },
+        };
+        Ok(Cylinder {
+            equation,
             radius,
             height,
-            radius_sq: radius * radius,
+            radius_sq,
         })
     }
 
@@ -47,18 +59,15 @@ impl Cylinder {
     /// 0 <= y <= h.
     #[inline]
     pub fn hit(&self, ray: &Ray) -> Option<f64> {
-        let (b, d) = self.frame.to_local(ray);
-        let qa = d.x * d.x + d.z * d.z;
-        let qb = 2.0 * (b.x * d.x + b.z * d.z);
-        let qc = b.x * b.x + b.z * b.z - self.radius_sq;
-        AxisFrame::first_in_bounds(solve_quadratic(qa, qb, qc), b.y, d.y, 0.0, self.height)
+        Accurate::axis_quadric(&self.equation, ray)
     }
 
     /// Local normal (x, 0, z), turned back by `irot`.
     #[inline]
     pub fn normal(&self, point: DVec3) -> DVec3 {
-        let p = self.frame.point_to_local(point);
-        self.frame.normal_to_world(DVec3::new(p.x, 0.0, p.z))
+        let frame = &self.equation.frame;
+        let p = frame.point_to_local(point);
+        frame.normal_to_world(DVec3::new(p.x, 0.0, p.z))
     }
 }
 

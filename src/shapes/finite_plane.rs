@@ -12,6 +12,7 @@
 //! 7 3           size (width height)
 //! ```
 
+use super::kernel::{Accurate, Kernel};
 use super::{Invalid, PlaneFrame, Ray, positive};
 use crate::scene_file::layout::label;
 use glam::{DVec2, DVec3};
@@ -43,7 +44,13 @@ impl FinitePlane {
     /// The plane's hit, if q = rot (H - point) lies in the rectangle.
     #[inline]
     pub fn hit(&self, ray: &Ray) -> Option<f64> {
-        let t = self.frame.plane.hit(ray)?;
+        self.hit_with::<Accurate>(ray)
+    }
+
+    /// [`FinitePlane::hit`] with the plane's t from kernel `K`.
+    #[inline]
+    pub fn hit_with<K: Kernel>(&self, ray: &Ray) -> Option<f64> {
+        let t = K::plane(&self.frame.plane, ray)?;
         let q = self.frame.plane_xy(ray.base + t * ray.dir);
         let inside = (0.0..=self.size.x).contains(&q.x) && (0.0..=self.size.y).contains(&q.y);
         inside.then_some(t)

@@ -14,7 +14,8 @@
 //! Local frame: axis +y, waist centre at the origin; x² + z² = k y² + rc² with
 //! k = (r² - rc²)/h², -h <= y <= h.
 
-use super::{AxisFrame, Invalid, Ray, positive, solve_quadratic};
+use super::kernel::{Accurate, Kernel};
+use super::{AxisFrame, AxisQuadric, Invalid, Ray, RootRule, positive};
 use crate::error::MeaningError;
 use crate::scene_file::layout::label;
 use glam::DVec3;
@@ -22,8 +23,9 @@ use glam::DVec3;
 /// A hyperboloid with its frame, k and rc² precomputed.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Hyperboloid {
-    /// Waist centre, `rotmat` and `irot`.
-    pub frame: AxisFrame,
+    /// x² - k y² + z² - rc² = 0 for -h <= y <= h, with the frame (waist centre, `rotmat`,
+    /// `irot`).
+    pub equation: AxisQuadric,
     /// Radius at y = ±h, > 0.
     pub radius: f64,
     /// Half-height h, > 0.
@@ -64,13 +66,22 @@ impl Hyperboloid {
                 error,
             });
         }
-        Ok(Hyperboloid {
+        let k = (r * r - waist * waist) / (h * h);
+        let waist_sq = waist * waist;
+        let equation = AxisQuadric {
             frame,
+            square: DVec3::new(1.0, -k, 1.0),
+            linear_y: 0.0,
+            constant: -waist_sq,
+            rule: RootRule::FirstPositiveWithin { low: -h, high: h },
+        };
+        Ok(Hyperboloid {
+            equation,
             radius: r,
             half_height: h,
             waist,
-            k: (r * r - waist * waist) / (h * h),
-            waist_sq: waist * waist,
+            k,
+            waist_sq,
         })
     }
 
@@ -78,16 +89,14 @@ impl Hyperboloid {
     /// smallest positive root with -h <= y <= h.
     #[inline]
     pub fn hit(&self, ray: &Ray) -> Option<f64> {
-        let (b, d) = self.frame.to_local(ray);
-        let (qa, qb, qc) = AxisFrame::cone_quadratic(b, d, self.k, self.waist_sq);
-        let h = self.half_height;
-        AxisFrame::first_in_bounds(solve_quadratic(qa, qb, qc), b.y, d.y, -h, h)
+        Accurate::axis_quadric(&self.equation, ray)
     }
 
     /// Local normal (2x, -2k y, 2z), turned back by `irot`.
     #[inline]
     pub fn normal(&self, point: DVec3) -> DVec3 {
-        self.frame.cone_normal(point, self.k)
+        let frame = &self.equation.frame;
+        frame.normal_to_world(self.equation.gradient(frame.point_to_local(point)))
     }
 }
 

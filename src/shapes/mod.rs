@@ -6,10 +6,13 @@
 //! drives the closest-hit loop; [`Shape::surface`] computes point and normal for the winner.
 
 mod axis_frame;
+mod axis_quadric;
 mod cone;
 mod cylinder;
+pub mod dd;
 mod finite_plane;
 mod hyperboloid;
+pub mod kernel;
 mod paraboloid;
 mod plane;
 mod plane_frame;
@@ -18,6 +21,7 @@ mod quadric;
 mod sphere;
 
 pub use axis_frame::AxisFrame;
+pub use axis_quadric::{AxisQuadric, RootRule};
 pub use cone::Cone;
 pub use cylinder::Cylinder;
 pub use finite_plane::FinitePlane;
@@ -31,6 +35,7 @@ pub use sphere::Sphere;
 
 use crate::error::MeaningError;
 use glam::DVec3;
+use kernel::{Accurate, Kernel};
 
 /// A ray: a base point and a unit direction.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -142,16 +147,22 @@ impl Shape {
     /// The caller keeps only `t > 0` (spec §4.6): a sphere may report a negative `t`.
     #[inline]
     pub fn hit(&self, ray: &Ray) -> Option<f64> {
+        self.hit_with::<Accurate>(ray)
+    }
+
+    /// [`Shape::hit`] computed by kernel `K`.
+    #[inline]
+    pub fn hit_with<K: Kernel>(&self, ray: &Ray) -> Option<f64> {
         match self {
-            Shape::Sphere(s) => s.hit(ray),
-            Shape::Plane(s) => s.hit(ray),
-            Shape::FinitePlane(s) => s.hit(ray),
-            Shape::FramedPlane(s) => s.plane.hit(ray),
-            Shape::Paraboloid(s) => s.hit(ray),
-            Shape::Cylinder(s) => s.hit(ray),
-            Shape::Cone(s) => s.hit(ray),
-            Shape::Hyperboloid(s) => s.hit(ray),
-            Shape::Quadric(s) => s.hit(ray),
+            Shape::Sphere(s) => K::axis_quadric(&s.equation, ray),
+            Shape::Plane(s) => K::plane(s, ray),
+            Shape::FinitePlane(s) => s.hit_with::<K>(ray),
+            Shape::FramedPlane(s) => K::plane(&s.plane, ray),
+            Shape::Paraboloid(s) => K::axis_quadric(&s.equation, ray),
+            Shape::Cylinder(s) => K::axis_quadric(&s.equation, ray),
+            Shape::Cone(s) => K::axis_quadric(&s.equation, ray),
+            Shape::Hyperboloid(s) => K::axis_quadric(&s.equation, ray),
+            Shape::Quadric(s) => K::quadric(s, ray),
         }
     }
 

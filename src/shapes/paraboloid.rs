@@ -11,15 +11,16 @@
 //! ```
 //! Local frame: axis +y, vertex at the origin; surface x² + z² = k y with k = r²/h.
 
-use super::{AxisFrame, Invalid, Ray, positive, solve_quadratic};
+use super::kernel::{Accurate, Kernel};
+use super::{AxisFrame, AxisQuadric, Invalid, Ray, RootRule, positive};
 use crate::scene_file::layout::label;
 use glam::DVec3;
 
 /// A paraboloid with its frame and scale k = r²/h.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Paraboloid {
-    /// Vertex, `rotmat` and `irot`.
-    pub frame: AxisFrame,
+    /// x² + z² - k y = 0 for 0 <= y <= h, with the frame (vertex, `rotmat`, `irot`).
+    pub equation: AxisQuadric,
     /// Radius at y = h, > 0.
     pub radius: f64,
     /// Height, > 0.
@@ -40,11 +41,22 @@ impl Paraboloid {
         let frame = AxisFrame::new(vertex, centre_line, RECORD)?;
         let radius = positive(RECORD, "radius", label::RADIUS_HEIGHT, 0, radius)?;
         let height = positive(RECORD, "height", label::RADIUS_HEIGHT, 1, height)?;
-        Ok(Paraboloid {
+        let k = radius * radius / height;
+        let equation = AxisQuadric {
             frame,
+            square: DVec3::new(1.0, 0.0, 1.0),
+            linear_y: -k,
+            constant: 0.0,
+            rule: RootRule::FirstPositiveWithin {
+                low: 0.0,
+                high: height,
+            },
+        };
+        Ok(Paraboloid {
+            equation,
             radius,
             height,
-            k: radius * radius / height,
+            k,
         })
     }
 
@@ -52,19 +64,15 @@ impl Paraboloid {
     /// root with 0 <= y <= h. Along the axis a = 0 and the equation is linear.
     #[inline]
     pub fn hit(&self, ray: &Ray) -> Option<f64> {
-        let (b, d) = self.frame.to_local(ray);
-        let qa = d.x * d.x + d.z * d.z;
-        let qb = 2.0 * (b.x * d.x + b.z * d.z) - self.k * d.y;
-        let qc = b.x * b.x + b.z * b.z - self.k * b.y;
-        AxisFrame::first_in_bounds(solve_quadratic(qa, qb, qc), b.y, d.y, 0.0, self.height)
+        Accurate::axis_quadric(&self.equation, ray)
     }
 
     /// Local normal (2x, -k, 2z), turned back by `irot`.
     #[inline]
     pub fn normal(&self, point: DVec3) -> DVec3 {
-        let p = self.frame.point_to_local(point);
-        self.frame
-            .normal_to_world(DVec3::new(2.0 * p.x, -self.k, 2.0 * p.z))
+        let frame = &self.equation.frame;
+        let p = frame.point_to_local(point);
+        frame.normal_to_world(DVec3::new(2.0 * p.x, -self.k, 2.0 * p.z))
     }
 }
 

@@ -10,6 +10,7 @@
 //! ```
 //! (code 20, the procedural plane, adds a shader index line).
 
+use super::kernel::{Accurate, Kernel};
 use super::{Invalid, Ray, unit_or_zero_error};
 use crate::scene_file::layout::label;
 use glam::DVec3;
@@ -33,15 +34,7 @@ impl Plane {
     /// t = N·(Q - B) / N·D; a miss when N·D = 0, t < 0, or the hit has z > 0 (spec §5.1).
     #[inline]
     pub fn hit(&self, ray: &Ray) -> Option<f64> {
-        let denominator = self.normal.dot(ray.dir);
-        if denominator == 0.0 {
-            return None;
-        }
-        let t = self.normal.dot(self.point - ray.base) / denominator;
-        if t < 0.0 || ray.base.z + t * ray.dir.z > 0.0 {
-            return None;
-        }
-        Some(t)
+        Accurate::plane(self, ray)
     }
 }
 

@@ -8,7 +8,8 @@
 //! ```
 //! The coefficients fill the symmetric matrix Q = [A B C D; B E F G; C F H I; D G I J].
 
-use super::{Invalid, Ray, solve_quadratic, unit};
+use super::kernel::{Accurate, Kernel};
+use super::{Invalid, Ray, unit};
 use crate::error::MeaningError;
 use crate::scene_file::layout::label;
 use glam::{DMat4, DVec3, DVec4};
@@ -43,17 +44,20 @@ impl Quadric {
         Ok(Quadric { coefficients, q })
     }
 
-    /// a = dᵀQd, b = 2 dᵀQp, c = pᵀQp with p = (B, 1), d = (D, 0); the smallest positive
-    /// root (a double root counts: a grazing ray touches the surface).
+    /// a = dᵀQd, b = 2 dᵀQp, c = pᵀQp with p = (B, 1), d = (D, 0) (note 004).
     #[inline]
-    pub fn hit(&self, ray: &Ray) -> Option<f64> {
+    pub fn coefficients(&self, ray: &Ray) -> (f64, f64, f64) {
         let p = ray.base.extend(1.0);
         let d = ray.dir.extend(0.0);
         let qp = self.q * p;
-        let qa = d.dot(self.q * d);
-        let qb = 2.0 * d.dot(qp);
-        let qc = p.dot(qp);
-        solve_quadratic(qa, qb, qc)?.into_iter().find(|&t| t > 0.0)
+        (d.dot(self.q * d), 2.0 * d.dot(qp), p.dot(qp))
+    }
+
+    /// The smallest positive root of a t² + b t + c = 0 (a double root counts: a grazing
+    /// ray touches the surface).
+    #[inline]
+    pub fn hit(&self, ray: &Ray) -> Option<f64> {
+        Accurate::quadric(self, ray)
     }
 
     /// The gradient (Ax+By+Cz+D, Bx+Ey+Fz+G, Cx+Fy+Hz+I), normalised, not flipped.

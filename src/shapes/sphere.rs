@@ -10,7 +10,8 @@
 //! ```
 //! (code 19, the procedural sphere, adds a shader index line).
 
-use super::{Invalid, Ray, positive, unit};
+use super::kernel::{Accurate, Kernel};
+use super::{AxisFrame, AxisQuadric, Invalid, Ray, RootRule, positive, unit};
 use crate::scene_file::layout::label;
 use glam::DVec3;
 
@@ -21,18 +22,29 @@ pub struct Sphere {
     pub centre: DVec3,
     /// Radius, > 0.
     pub radius: f64,
-    /// r², used by every hit test.
+    /// r².
     pub radius_sq: f64,
+    /// |P - C|² - r² = 0 in the form every kernel solves.
+    pub equation: AxisQuadric,
 }
 
 impl Sphere {
     /// Validates the radius (> 0) and precomputes r².
     pub fn new(centre: DVec3, radius: f64, record: &'static str) -> Result<Sphere, Invalid> {
         let radius = positive(record, "radius", label::RADIUS, 0, radius)?;
+        let radius_sq = radius * radius;
+        let equation = AxisQuadric {
+            frame: AxisFrame::unrotated(centre),
+            square: DVec3::ONE,
+            linear_y: 0.0,
+            constant: -radius_sq,
+            rule: RootRule::Nearer,
+        };
         Ok(Sphere {
             centre,
             radius,
-            radius_sq: radius * radius,
+            radius_sq,
+            equation,
         })
     }
 
@@ -40,17 +52,7 @@ impl Sphere {
     /// positive (spec §5.2: a tangent ray misses, a ray from inside finds t <= 0).
     #[inline]
     pub fn hit(&self, ray: &Ray) -> Option<f64> {
-        let base = ray.base - self.centre;
-        // With b = 2 B'·D the quadratic's discriminant is 4 (half_b² - a c).
-        let a = ray.dir.length_squared();
-        let half_b = base.dot(ray.dir);
-        let c = base.length_squared() - self.radius_sq;
-        let quarter_discriminant = half_b * half_b - a * c;
-        if quarter_discriminant <= 0.0 {
-            return None;
-        }
-        let q = -(half_b + quarter_discriminant.sqrt().copysign(half_b));
-        Some((q / a).min(c / q))
+        Accurate::axis_quadric(&self.equation, ray)
     }
 
     /// Unit outward normal unit(P - C).

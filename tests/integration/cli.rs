@@ -14,6 +14,7 @@ fn ppm_of(text: &str, width: usize, height: usize, max_dist: f64) -> Vec<u8> {
         width,
         height,
         max_dist,
+        kernel: Default::default(),
     };
     legacy_rt::image_output::ppm(&render(&scene, &options, |_| {}).0)
 }

@@ -50,6 +50,7 @@ pub fn image_document(scene: &legacy_rt::Scene) -> String {
         width: width as usize,
         height: height as usize,
         max_dist: DEFAULT_MAX_DIST,
+        kernel: Default::default(),
     };
     let (small, _) = render(scene, &options((32, 24)), |_| {});
     let mut text = String::from("P3\n32 24\n255\n");

@@ -31,6 +31,7 @@ fn special_rays_give_finite_colours() {
         width: 64,
         height: 48,
         max_dist: DEFAULT_MAX_DIST,
+        kernel: Default::default(),
     };
     let rays = [
         // Along the cylinder's axis, inside it: a = b = 0.

@@ -10,6 +10,7 @@ fn render_scene(text: &str, width: usize, height: usize) -> legacy_rt::Image {
         width,
         height,
         max_dist: render::DEFAULT_MAX_DIST,
+        kernel: Default::default(),
     };
     render::render(&scene, &options, |_| {}).0
 }

@@ -1,0 +1,87 @@
+//! The one equation behind the sphere and the course quadrics 21-24: in the shape's local
+//! frame (spec §5.6), with L = rotmat (P - C),
+//!
+//! ```text
+//! f(L) = αx Lx² + αy Ly² + αz Lz² + β Ly + γ = 0
+//! ```
+//!
+//! | shape                 | αx | αy | αz | β  | γ    | bounds on Ly       |
+//! |-----------------------|----|----|----|----|------|--------------------|
+//! | sphere (13, 19)       | 1  | 1  | 1  | 0  | -r²  | none, nearer root  |
+//! | paraboloid (21)       | 1  | 0  | 1  | -k | 0    | 0 <= Ly <= h       |
+//! | cylinder (22)         | 1  | 0  | 1  | 0  | -r²  | 0 <= Ly <= h       |
+//! | cone (23)             | 1  | -k | 1  | 0  | 0    | 0 <= Ly <= h       |
+//! | hyperboloid (24)      | 1  | -k | 1  | 0  | -rc² | -h <= Ly <= h      |
+//!
+//! A ray L = B' + t D' turns it into a t² + b t + c = 0 with
+//! a = Σ αᵢ D'ᵢ², b = 2 Σ αᵢ B'ᵢ D'ᵢ + β D'y, c = f(B'): exactly the coefficients that
+//! note 003 writes out shape by shape. The kernels in [`super::kernel`] solve it.
+
+use super::AxisFrame;
+use glam::DVec3;
+
+/// How a root is chosen (spec §5.2 and §5.6).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum RootRule {
+    /// The sphere: the smaller root, even when negative, if the discriminant is > 0.
+    Nearer,
+    /// The quadrics 21-24: the smallest positive root whose local y lies in
+    /// `[low, high]`; a zero discriminant counts.
+    FirstPositiveWithin {
+        /// Lowest local y.
+        low: f64,
+        /// Highest local y.
+        high: f64,
+    },
+}
+
+/// A quadric of the form above, with its frame and root rule.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AxisQuadric {
+    /// Centre point and rotation (the identity for a sphere).
+    pub frame: AxisFrame,
+    /// (αx, αy, αz).
+    pub square: DVec3,
+    /// β, the coefficient of Ly.
+    pub linear_y: f64,
+    /// γ.
+    pub constant: f64,
+    /// Which root counts.
+    pub rule: RootRule,
+}
+
+impl AxisQuadric {
+    /// f at a local point, in f64.
+    #[inline]
+    pub fn value(&self, local: DVec3) -> f64 {
+        (self.square * local).dot(local) + self.linear_y * local.y + self.constant
+    }
+
+    /// a, b, c of the quadratic along the local ray B' + t D', written as note 003 does.
+    #[inline]
+    pub fn coefficients(&self, base: DVec3, dir: DVec3) -> (f64, f64, f64) {
+        let weighted = self.square * dir;
+        (
+            weighted.dot(dir),
+            2.0 * weighted.dot(base) + self.linear_y * dir.y,
+            self.value(base),
+        )
+    }
+
+    /// The local gradient ∇f = (2αx Lx, 2αy Ly + β, 2αz Lz).
+    #[inline]
+    pub fn gradient(&self, local: DVec3) -> DVec3 {
+        let mut gradient = 2.0 * self.square * local;
+        gradient.y += self.linear_y;
+        gradient
+    }
+
+    /// Whether a local y lies within the rule's bounds (always true for the sphere).
+    #[inline]
+    pub fn within(&self, y: f64) -> bool {
+        match self.rule {
+            RootRule::Nearer => true,
+            RootRule::FirstPositiveWithin { low, high } => low <= y && y <= high,
+        }
+    }
+}

@@ -1,0 +1,140 @@
+//! Double-double numbers: an f64 pair `hi + lo` that carries about 106 bits, built from
+//! the error-free transformations of Knuth (two-sum) and Dekker (two-product).
+//!
+//! The accurate kernel uses them only to evaluate a quadric at a trial point (the
+//! residual of one refinement step), where the terms cancel down to a small number and
+//! f64 would keep none of its digits. [`two_prod`] takes the product's rounding error from
+//! a fused multiply-add, which is exact on every machine: the kernel runs its refinement
+//! in a copy compiled for the FMA instruction when the CPU has one (checked once, at run
+//! time), and otherwise `mul_add` calls the C library's `fma`, slower, same bits.
+
+use std::ops::{Add, Mul, Neg, Sub};
+
+/// `hi + lo` with |lo| <= ulp(hi) / 2.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Dd {
+    /// The leading f64.
+    pub hi: f64,
+    /// What `hi` left out.
+    pub lo: f64,
+}
+
+impl Dd {
+    /// An f64 as a double-double.
+    #[inline]
+    pub fn new(value: f64) -> Dd {
+        Dd { hi: value, lo: 0.0 }
+    }
+
+    /// The value rounded to f64.
+    #[inline]
+    pub fn value(self) -> f64 {
+        self.hi + self.lo
+    }
+}
+
+/// a + b exactly, as the rounded sum and its rounding error (Knuth's two-sum, 6 flops).
+#[inline(always)]
+pub fn two_sum(a: f64, b: f64) -> Dd {
+    let hi = a + b;
+    let b_virtual = hi - a;
+    let a_virtual = hi - b_virtual;
+    let lo = (a - a_virtual) + (b - b_virtual);
+    Dd { hi, lo }
+}
+
+/// a + b exactly when |a| >= |b| (or a = 0) (Dekker's fast two-sum, 3 flops).
+#[inline(always)]
+fn fast_two_sum(a: f64, b: f64) -> Dd {
+    let hi = a + b;
+    let lo = b - (hi - a);
+    Dd { hi, lo }
+}
+
+/// a * b exactly, as the rounded product and its rounding error (exact unless the
+/// product overflows or underflows).
+#[inline(always)]
+pub fn two_prod(a: f64, b: f64) -> Dd {
+    let hi = a * b;
+    Dd {
+        hi,
+        lo: a.mul_add(b, -hi),
+    }
+}
+
+impl Add for Dd {
+    type Output = Dd;
+    /// The sum, with an error of a few units in the 106th bit of the larger operand.
+    #[inline(always)]
+    fn add(self, other: Dd) -> Dd {
+        let s = two_sum(self.hi, other.hi);
+        let t = two_sum(self.lo, other.lo);
+        let u = fast_two_sum(s.hi, s.lo + t.hi);
+        fast_two_sum(u.hi, u.lo + t.lo)
+    }
+}
+
+impl Neg for Dd {
+    type Output = Dd;
+    #[inline(always)]
+    fn neg(self) -> Dd {
+        Dd {
+            hi: -self.hi,
+            lo: -self.lo,
+        }
+    }
+}
+
+impl Sub for Dd {
+    type Output = Dd;
+    #[inline(always)]
+    fn sub(self, other: Dd) -> Dd {
+        self + -other
+    }
+}
+
+impl Mul for Dd {
+    type Output = Dd;
+    /// The product; the lo * lo term is below the result's precision and left out.
+    #[inline(always)]
+    fn mul(self, other: Dd) -> Dd {
+        let p = two_prod(self.hi, other.hi);
+        fast_two_sum(p.hi, p.lo + (self.hi * other.lo + self.lo * other.hi))
+    }
+}
+
+impl Mul<Dd> for f64 {
+    type Output = Dd;
+    #[inline(always)]
+    fn mul(self, other: Dd) -> Dd {
+        let p = two_prod(self, other.hi);
+        fast_two_sum(p.hi, p.lo + self * other.lo)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn two_sum_and_two_prod_are_exact() {
+        // 1 + 2^-60 is not an f64; the pair keeps the 2^-60.
+        let s = two_sum(1.0, 2f64.powi(-60));
+        assert_eq!((s.hi, s.lo), (1.0, 2f64.powi(-60)));
+        // (1 + 2^-30)² = 1 + 2^-29 + 2^-60: the last term is the product's rounding error.
+        let x = 1.0 + 2f64.powi(-30);
+        let p = two_prod(x, x);
+        assert_eq!((p.hi, p.lo), (1.0 + 2f64.powi(-29), 2f64.powi(-60)));
+    }
+
+    #[test]
+    fn cancellation_keeps_the_low_digits() {
+        // (1e8 + 1e-9)² - 1e16 = 0.2 + 1e-18. In f64, 1e8 + 1e-9 rounds to 1e8 and the
+        // difference comes out as 0; the pair gives 0.2 to the last bit.
+        let x = Dd::new(1e8) + Dd::new(1e-9);
+        let difference = x * x - Dd::new(1e16);
+        assert!((difference.value() - 0.2).abs() <= 1e-16, "{difference:?}");
+        let plain = (1e8f64 + 1e-9) * (1e8 + 1e-9) - 1e16;
+        assert_eq!(plain, 0.0);
+    }
+}
