@@ -75,13 +75,4 @@ impl AxisQuadric {
         gradient.y += self.linear_y;
         gradient
     }
-
-    /// Whether a local y lies within the rule's bounds (always true for the sphere).
-    #[inline]
-    pub fn within(&self, y: f64) -> bool {
-        match self.rule {
-            RootRule::Nearer => true,
-            RootRule::FirstPositiveWithin { low, high } => low <= y && y <= high,
-        }
-    }
 }
