@@ -68,6 +68,16 @@ impl AxisQuadric {
         )
     }
 
+    /// The unit world normal at a world point: ∇f in the local frame, turned back by
+    /// `irot` and normalised (zero at a cone's apex, where ∇f = 0). For the sphere it is
+    /// unit(P - C); for the cylinder unit(x, 0, z); the paraboloid (2x, -k, 2z); the cone
+    /// and hyperboloid (2x, -2k y, 2z), all in local coordinates (note 003).
+    #[inline]
+    pub fn normal(&self, point: DVec3) -> DVec3 {
+        let frame = &self.frame;
+        frame.normal_to_world(self.gradient(frame.point_to_local(point)))
+    }
+
     /// The local gradient ∇f = (2αx Lx, 2αy Ly + β, 2αz Lz).
     #[inline]
     pub fn gradient(&self, local: DVec3) -> DVec3 {

@@ -65,9 +65,7 @@ impl Cylinder {
     /// Local normal (x, 0, z), turned back by `irot`.
     #[inline]
     pub fn normal(&self, point: DVec3) -> DVec3 {
-        let frame = &self.equation.frame;
-        let p = frame.point_to_local(point);
-        frame.normal_to_world(DVec3::new(p.x, 0.0, p.z))
+        self.equation.normal(point)
     }
 }
 

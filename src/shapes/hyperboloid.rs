@@ -95,8 +95,7 @@ impl Hyperboloid {
     /// Local normal (2x, -2k y, 2z), turned back by `irot`.
     #[inline]
     pub fn normal(&self, point: DVec3) -> DVec3 {
-        let frame = &self.equation.frame;
-        frame.normal_to_world(self.equation.gradient(frame.point_to_local(point)))
+        self.equation.normal(point)
     }
 }
 

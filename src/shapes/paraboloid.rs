@@ -70,9 +70,7 @@ impl Paraboloid {
     /// Local normal (2x, -k, 2z), turned back by `irot`.
     #[inline]
     pub fn normal(&self, point: DVec3) -> DVec3 {
-        let frame = &self.equation.frame;
-        let p = frame.point_to_local(point);
-        frame.normal_to_world(DVec3::new(2.0 * p.x, -self.k, 2.0 * p.z))
+        self.equation.normal(point)
     }
 }
 

@@ -11,7 +11,7 @@
 //! (code 19, the procedural sphere, adds a shader index line).
 
 use super::kernel::{Accurate, Kernel};
-use super::{AxisFrame, AxisQuadric, Invalid, Ray, RootRule, positive, unit};
+use super::{AxisFrame, AxisQuadric, Invalid, Ray, RootRule, positive};
 use crate::scene_file::layout::label;
 use glam::DVec3;
 
@@ -58,7 +58,7 @@ impl Sphere {
     /// Unit outward normal unit(P - C).
     #[inline]
     pub fn normal(&self, point: DVec3) -> DVec3 {
-        unit(point - self.centre).unwrap_or(DVec3::ZERO)
+        self.equation.normal(point)
     }
 }
 

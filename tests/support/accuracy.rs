@@ -402,6 +402,65 @@ fn across_axis(g: &mut Gen, y: f64, impact: f64, distance: f64) -> (DVec3, DVec3
     )
 }
 
+/// Where a horizontal local ray crosses a surface of revolution: its radius at height
+/// `y`, and the shape's size for the distance of the ray's start.
+struct Side {
+    radius: f64,
+    y: f64,
+    size: f64,
+    shape: Shape,
+}
+
+/// A family's ranges: the fraction of the radius the ray passes the axis at, and the
+/// distance of its start in sizes (log-uniform).
+struct Spread {
+    impact: (f64, f64),
+    distance: (f64, f64),
+}
+
+const FAR: Spread = Spread {
+    impact: (0.0, 0.9),
+    distance: (10.0, 1e5),
+};
+const GRAZING: Spread = Spread {
+    impact: (0.999, 1.0),
+    distance: (2.0, 1e3),
+};
+const TRANSLATED: Spread = Spread {
+    impact: (0.0, 0.95),
+    distance: (2.0, 50.0),
+};
+
+impl Side {
+    fn new(radius: f64, y: f64, size: f64, shape: Shape) -> Side {
+        Side {
+            radius,
+            y,
+            size,
+            shape,
+        }
+    }
+
+    /// A horizontal local ray at height y, spread as `spread` says.
+    fn case(self, g: &mut Gen, spread: Spread) -> Case {
+        let impact = self.radius * g.uniform(spread.impact.0, spread.impact.1);
+        let distance = self.size * g.log(spread.distance.0, spread.distance.1);
+        let (base, dir) = across_axis(g, self.y, impact, distance);
+        let equation = match &self.shape {
+            Shape::Cylinder(s) => &s.equation,
+            Shape::Cone(s) => &s.equation,
+            Shape::Paraboloid(s) => &s.equation,
+            Shape::Hyperboloid(s) => &s.equation,
+            other => unreachable!("{other:?} is not a surface of revolution"),
+        };
+        let ray = from_local(equation, base, dir);
+        Case {
+            shape: self.shape,
+            ray,
+        }
+    }
+}
+
 fn family(
     shape: &'static str,
     name: &'static str,
@@ -507,35 +566,18 @@ pub fn suite() -> Vec<Family> {
         let centre = far * g.direction() + g.point(5.0);
         Cylinder::new(centre, centre_line(g), r, h).unwrap()
     };
+    let cylinder_side = |g: &mut Gen, far: f64| {
+        let s = cylinder(g, far);
+        let y = g.uniform(0.1, 0.9) * s.height;
+        Side::new(s.radius, y, s.radius, Shape::Cylinder(s))
+    };
     families.push(family("cylinder", "far (d/r 10..1e5)", g, |g| {
-        let s = cylinder(g, 0.0);
-        let (r, h) = (s.radius, s.height);
-        let (y, impact, distance) = (
-            g.uniform(0.1, 0.9) * h,
-            r * g.uniform(0.0, 0.9),
-            r * g.log(10.0, 1e5),
-        );
-        let (base, dir) = across_axis(g, y, impact, distance);
-        let ray = from_local(&s.equation, base, dir);
-        Case {
-            shape: Shape::Cylinder(s),
-            ray,
-        }
+        let side = cylinder_side(g, 0.0);
+        side.case(g, FAR)
     }));
     families.push(family("cylinder", "grazing (0.999..1 of r)", g, |g| {
-        let s = cylinder(g, 0.0);
-        let (r, h) = (s.radius, s.height);
-        let (y, impact, distance) = (
-            g.uniform(0.1, 0.9) * h,
-            r * g.uniform(0.999, 1.0),
-            r * g.log(2.0, 1e3),
-        );
-        let (base, dir) = across_axis(g, y, impact, distance);
-        let ray = from_local(&s.equation, base, dir);
-        Case {
-            shape: Shape::Cylinder(s),
-            ray,
-        }
+        let side = cylinder_side(g, 0.0);
+        side.case(g, GRAZING)
     }));
     families.push(family("cylinder", "nearly parallel to the axis", g, |g| {
         let s = cylinder(g, 0.0);
@@ -573,19 +615,8 @@ pub fn suite() -> Vec<Family> {
         }
     }));
     families.push(family("cylinder", "translated 1e4", g, |g| {
-        let s = cylinder(g, 1e4);
-        let (r, h) = (s.radius, s.height);
-        let (y, impact, distance) = (
-            g.uniform(0.1, 0.9) * h,
-            r * g.uniform(0.0, 0.95),
-            r * g.log(2.0, 50.0),
-        );
-        let (base, dir) = across_axis(g, y, impact, distance);
-        let ray = from_local(&s.equation, base, dir);
-        Case {
-            shape: Shape::Cylinder(s),
-            ray,
-        }
+        let side = cylinder_side(g, 1e4);
+        side.case(g, TRANSLATED)
     }));
 
     let cone = |g: &mut Gen, far: f64| {
@@ -593,33 +624,18 @@ pub fn suite() -> Vec<Family> {
         let centre = far * g.direction() + g.point(5.0);
         Cone::new(centre, centre_line(g), r, h).unwrap()
     };
-    families.push(family("cone", "far (d/r 10..1e5)", g, |g| {
-        let s = cone(g, 0.0);
+    let cone_side = |g: &mut Gen, far: f64| {
+        let s = cone(g, far);
         let y = g.uniform(0.2, 0.9) * s.height;
-        let radius = s.k.sqrt() * y;
-        let (y, impact, distance) = (y, radius * g.uniform(0.0, 0.9), s.radius * g.log(10.0, 1e5));
-        let (base, dir) = across_axis(g, y, impact, distance);
-        let ray = from_local(&s.equation, base, dir);
-        Case {
-            shape: Shape::Cone(s),
-            ray,
-        }
+        Side::new(s.k.sqrt() * y, y, s.radius, Shape::Cone(s))
+    };
+    families.push(family("cone", "far (d/r 10..1e5)", g, |g| {
+        let side = cone_side(g, 0.0);
+        side.case(g, FAR)
     }));
     families.push(family("cone", "grazing (0.999..1 of r)", g, |g| {
-        let s = cone(g, 0.0);
-        let y = g.uniform(0.2, 0.9) * s.height;
-        let radius = s.k.sqrt() * y;
-        let (y, impact, distance) = (
-            y,
-            radius * g.uniform(0.999, 1.0),
-            s.radius * g.log(2.0, 1e3),
-        );
-        let (base, dir) = across_axis(g, y, impact, distance);
-        let ray = from_local(&s.equation, base, dir);
-        Case {
-            shape: Shape::Cone(s),
-            ray,
-        }
+        let side = cone_side(g, 0.0);
+        side.case(g, GRAZING)
     }));
     families.push(family("cone", "nearly parallel to a generator", g, |g| {
         let s = cone(g, 0.0);
@@ -658,26 +674,19 @@ pub fn suite() -> Vec<Family> {
         }
     }));
     families.push(family("cone", "translated 1e4", g, |g| {
-        let s = cone(g, 1e4);
-        let y = g.uniform(0.2, 0.9) * s.height;
-        let radius = s.k.sqrt() * y;
-        let (y, impact, distance) = (
-            y,
-            radius * g.uniform(0.0, 0.95),
-            s.radius * g.log(2.0, 50.0),
-        );
-        let (base, dir) = across_axis(g, y, impact, distance);
-        let ray = from_local(&s.equation, base, dir);
-        Case {
-            shape: Shape::Cone(s),
-            ray,
-        }
+        let side = cone_side(g, 1e4);
+        side.case(g, TRANSLATED)
     }));
 
     let paraboloid = |g: &mut Gen, far: f64| {
         let (r, h) = (g.uniform(0.5, 2.0), g.uniform(1.0, 5.0));
         let centre = far * g.direction() + g.point(5.0);
         Paraboloid::new(centre, centre_line(g), r, h).unwrap()
+    };
+    let paraboloid_side = |g: &mut Gen, far: f64| {
+        let s = paraboloid(g, far);
+        let y = g.uniform(0.2, 0.9) * s.height;
+        Side::new((s.k * y).sqrt(), y, s.radius, Shape::Paraboloid(s))
     };
     families.push(family("paraboloid", "along and near the axis", g, |g| {
         let s = paraboloid(g, 0.0);
@@ -697,48 +706,16 @@ pub fn suite() -> Vec<Family> {
         }
     }));
     families.push(family("paraboloid", "far (d/r 10..1e5)", g, |g| {
-        let s = paraboloid(g, 0.0);
-        let y = g.uniform(0.2, 0.9) * s.height;
-        let radius = (s.k * y).sqrt();
-        let (y, impact, distance) = (y, radius * g.uniform(0.0, 0.9), s.radius * g.log(10.0, 1e5));
-        let (base, dir) = across_axis(g, y, impact, distance);
-        let ray = from_local(&s.equation, base, dir);
-        Case {
-            shape: Shape::Paraboloid(s),
-            ray,
-        }
+        let side = paraboloid_side(g, 0.0);
+        side.case(g, FAR)
     }));
     families.push(family("paraboloid", "grazing (0.999..1 of r)", g, |g| {
-        let s = paraboloid(g, 0.0);
-        let y = g.uniform(0.2, 0.9) * s.height;
-        let radius = (s.k * y).sqrt();
-        let (y, impact, distance) = (
-            y,
-            radius * g.uniform(0.999, 1.0),
-            s.radius * g.log(2.0, 1e3),
-        );
-        let (base, dir) = across_axis(g, y, impact, distance);
-        let ray = from_local(&s.equation, base, dir);
-        Case {
-            shape: Shape::Paraboloid(s),
-            ray,
-        }
+        let side = paraboloid_side(g, 0.0);
+        side.case(g, GRAZING)
     }));
     families.push(family("paraboloid", "translated 1e4", g, |g| {
-        let s = paraboloid(g, 1e4);
-        let y = g.uniform(0.2, 0.9) * s.height;
-        let radius = (s.k * y).sqrt();
-        let (y, impact, distance) = (
-            y,
-            radius * g.uniform(0.0, 0.95),
-            s.radius * g.log(2.0, 50.0),
-        );
-        let (base, dir) = across_axis(g, y, impact, distance);
-        let ray = from_local(&s.equation, base, dir);
-        Case {
-            shape: Shape::Paraboloid(s),
-            ray,
-        }
+        let side = paraboloid_side(g, 1e4);
+        side.case(g, TRANSLATED)
     }));
 
     let hyperboloid = |g: &mut Gen, far: f64| {
@@ -746,6 +723,12 @@ pub fn suite() -> Vec<Family> {
         let waist = r * g.uniform(0.2, 0.9);
         let centre = far * g.direction() + g.point(5.0);
         Hyperboloid::new(centre, centre_line(g), r, h, waist).unwrap()
+    };
+    let hyperboloid_side = |g: &mut Gen, far: f64| {
+        let s = hyperboloid(g, far);
+        let y = g.uniform(-0.9, 0.9) * s.half_height;
+        let radius = (s.k * y * y + s.waist_sq).sqrt();
+        Side::new(radius, y, s.radius, Shape::Hyperboloid(s))
     };
     families.push(family("hyperboloid", "near the waist", g, |g| {
         let s = hyperboloid(g, 0.0);
@@ -764,32 +747,12 @@ pub fn suite() -> Vec<Family> {
         }
     }));
     families.push(family("hyperboloid", "far (d/r 10..1e5)", g, |g| {
-        let s = hyperboloid(g, 0.0);
-        let y = g.uniform(-0.9, 0.9) * s.half_height;
-        let radius = (s.k * y * y + s.waist_sq).sqrt();
-        let (y, impact, distance) = (y, radius * g.uniform(0.0, 0.9), s.radius * g.log(10.0, 1e5));
-        let (base, dir) = across_axis(g, y, impact, distance);
-        let ray = from_local(&s.equation, base, dir);
-        Case {
-            shape: Shape::Hyperboloid(s),
-            ray,
-        }
+        let side = hyperboloid_side(g, 0.0);
+        side.case(g, FAR)
     }));
     families.push(family("hyperboloid", "translated 1e4", g, |g| {
-        let s = hyperboloid(g, 1e4);
-        let y = g.uniform(-0.9, 0.9) * s.half_height;
-        let radius = (s.k * y * y + s.waist_sq).sqrt();
-        let (y, impact, distance) = (
-            y,
-            radius * g.uniform(0.0, 0.95),
-            s.radius * g.log(2.0, 50.0),
-        );
-        let (base, dir) = across_axis(g, y, impact, distance);
-        let ray = from_local(&s.equation, base, dir);
-        Case {
-            shape: Shape::Hyperboloid(s),
-            ray,
-        }
+        let side = hyperboloid_side(g, 1e4);
+        side.case(g, TRANSLATED)
     }));
 
     // The general quadric: spheres, cylinders and cones written as QUADRIC records.

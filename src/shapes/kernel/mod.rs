@@ -93,6 +93,31 @@ pub(crate) fn choose(rule: RootRule, roots: [f64; 2], base_y: f64, dir_y: f64) -
     }
 }
 
+/// A root solver: a, b, c and whether a zero discriminant misses.
+pub(crate) type Solver = fn(f64, f64, f64, bool) -> Option<[f64; 2]>;
+
+/// An axis quadric solved the way note 003 does it: the local ray, the coefficients as
+/// written, the roots by `solve`, the legacy choice. Only the solver differs between
+/// [`Textbook`] and [`StableRoots`].
+#[inline(always)]
+pub(crate) fn axis_quadric_as_written(
+    quadric: &AxisQuadric,
+    ray: &Ray,
+    solve: Solver,
+) -> Option<f64> {
+    let (base, dir) = quadric.frame.to_local(ray);
+    let (a, b, c) = quadric.coefficients(base, dir);
+    let roots = solve(a, b, c, strict(quadric.rule))?;
+    choose(quadric.rule, roots, base.y, dir.y)
+}
+
+/// A general quadric solved from its f64 coefficients by `solve`.
+#[inline(always)]
+pub(crate) fn quadric_as_written(quadric: &Quadric, ray: &Ray, solve: Solver) -> Option<f64> {
+    let (a, b, c) = quadric.coefficients(ray);
+    first_positive(solve(a, b, c, false)?)
+}
+
 /// The legacy choice for a general quadric: the smallest positive root.
 #[inline]
 pub(crate) fn first_positive(roots: [f64; 2]) -> Option<f64> {

@@ -1,7 +1,7 @@
 //! The notes' coefficients solved by the cancellation-free root formula only
 //! ([`crate::shapes::solve_quadratic`]).
 
-use super::{Kernel, Textbook, choose, first_positive, strict};
+use super::{Kernel, Textbook, axis_quadric_as_written, quadric_as_written};
 use crate::shapes::{AxisQuadric, Plane, Quadric, Ray, solve_quadratic};
 
 /// Stable roots of the textbook coefficients.
@@ -22,16 +22,12 @@ impl Kernel for StableRoots {
 
     #[inline]
     fn axis_quadric(quadric: &AxisQuadric, ray: &Ray) -> Option<f64> {
-        let (base, dir) = quadric.frame.to_local(ray);
-        let (a, b, c) = quadric.coefficients(base, dir);
-        let roots = stable_roots(a, b, c, strict(quadric.rule))?;
-        choose(quadric.rule, roots, base.y, dir.y)
+        axis_quadric_as_written(quadric, ray, stable_roots)
     }
 
     #[inline]
     fn quadric(quadric: &Quadric, ray: &Ray) -> Option<f64> {
-        let (a, b, c) = quadric.coefficients(ray);
-        first_positive(solve_quadratic(a, b, c)?)
+        quadric_as_written(quadric, ray, stable_roots)
     }
 
     /// The plane has no quadratic: the textbook division.

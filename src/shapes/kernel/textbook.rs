@@ -1,7 +1,7 @@
 //! The course notes' kernel: the coefficients as note 003 writes them and the roots by
 //! (-b ± sqrt(b² - 4ac)) / 2a, in f64.
 
-use super::{Kernel, choose, first_positive, plane_rule, strict};
+use super::{Kernel, axis_quadric_as_written, plane_rule, quadric_as_written};
 use crate::shapes::{AxisQuadric, Plane, Quadric, Ray};
 
 /// The notes' formula in f64.
@@ -29,16 +29,12 @@ impl Kernel for Textbook {
 
     #[inline]
     fn axis_quadric(quadric: &AxisQuadric, ray: &Ray) -> Option<f64> {
-        let (base, dir) = quadric.frame.to_local(ray);
-        let (a, b, c) = quadric.coefficients(base, dir);
-        let roots = textbook_roots(a, b, c, strict(quadric.rule))?;
-        choose(quadric.rule, roots, base.y, dir.y)
+        axis_quadric_as_written(quadric, ray, textbook_roots)
     }
 
     #[inline]
     fn quadric(quadric: &Quadric, ray: &Ray) -> Option<f64> {
-        let (a, b, c) = quadric.coefficients(ray);
-        first_positive(textbook_roots(a, b, c, false)?)
+        quadric_as_written(quadric, ray, textbook_roots)
     }
 
     #[inline]
