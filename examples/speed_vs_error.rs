@@ -6,7 +6,7 @@
 //!
 //! For each kernel (the shipped `accurate`, `stable`, `textbook`, `textbook-f32`) and each
 //! kind of surface it measures, on the hard-case suite of tests/support/accuracy.rs: the
-//! time per ray-surface test (median of 7 timed passes over all the kind's cases), the
+//! time per ray-surface test (median of 15 timed passes over all the kind's cases, the kernels taking turns), the
 //! largest and median error in ulps of the exact root, the hits that should be misses and
 //! the misses that should be hits (outside ties), and the ties. Then whole-image rays per
 //! second on two example scenes. It prints the tables and writes them to
@@ -33,44 +33,90 @@ struct Row {
     tally: Tally,
 }
 
-/// Median time per test, in ns, of kernel `K` over `cases`.
-fn time_per_test<K: Kernel>(cases: &[&Case]) -> f64 {
-    let pass = || {
-        let start = Instant::now();
-        let mut hits = 0usize;
-        for _ in 0..40 {
-            for case in cases {
-                hits +=
-                    black_box(case.shape.hit_with::<K>(black_box(&case.ray))).is_some() as usize;
-            }
+/// Time per test, in ns, of one pass of kernel `K` over `cases` (20 times each).
+fn pass<K: Kernel>(cases: &[&Case]) -> f64 {
+    let start = Instant::now();
+    let mut hits = 0usize;
+    for _ in 0..20 {
+        for case in cases {
+            hits += black_box(case.shape.hit_with::<K>(black_box(&case.ray))).is_some() as usize;
         }
-        black_box(hits);
-        start.elapsed().as_secs_f64() * 1e9 / (40 * cases.len()) as f64
-    };
-    pass(); // warm-up
-    let mut times: Vec<f64> = (0..7).map(|_| pass()).collect();
-    times.sort_by(f64::total_cmp);
-    times[times.len() / 2]
+    }
+    black_box(hits);
+    start.elapsed().as_secs_f64() * 1e9 / (20 * cases.len()) as f64
 }
 
-fn rows_for<K: Kernel>(families: &[(Family, Vec<Reference>)]) -> Vec<Row> {
-    SHAPES
-        .iter()
-        .map(|&shape| {
-            let mine: Vec<_> = families.iter().filter(|(f, _)| f.shape == shape).collect();
-            let mut total = Tally::default();
-            for (family, references) in &mine {
-                total.merge(&tally::<K>(family, references));
-            }
-            let cases: Vec<&Case> = mine.iter().flat_map(|(f, _)| f.cases.iter()).collect();
-            Row {
-                kernel: K::NAME,
+/// Median time per test of each kernel (in `KernelChoice::ALL` order) over `cases`. The
+/// kernels take turns, pass by pass, so that a change of clock speed or a neighbour's
+/// load on the shared machine falls on all of them alike.
+fn times_per_test(cases: &[&Case]) -> [f64; 4] {
+    let passes: [fn(&[&Case]) -> f64; 4] = [
+        pass::<Accurate>,
+        pass::<StableRoots>,
+        pass::<Textbook>,
+        pass::<TextbookF32>,
+    ];
+    for timed in passes {
+        timed(cases); // warm-up
+    }
+    let mut samples: [Vec<f64>; 4] = Default::default();
+    for round in 0..15 {
+        for k in 0..4 {
+            let k = (k + round) % 4;
+            samples[k].push(passes[k](cases));
+        }
+    }
+    samples.map(|mut times| {
+        times.sort_by(f64::total_cmp);
+        times[times.len() / 2]
+    })
+}
+
+/// The rows of every kernel for every kind of surface, and the time per test of each
+/// family (accurate, textbook).
+fn rows(families: &[(Family, Vec<Reference>)]) -> (Vec<Row>, Vec<(String, f64, f64)>) {
+    let mut rows = Vec::new();
+    for &shape in SHAPES.iter() {
+        let mine: Vec<_> = families.iter().filter(|(f, _)| f.shape == shape).collect();
+        let cases: Vec<&Case> = mine.iter().flat_map(|(f, _)| f.cases.iter()).collect();
+        let times = times_per_test(&cases);
+        let tallies = [
+            tally_all::<Accurate>(&mine),
+            tally_all::<StableRoots>(&mine),
+            tally_all::<Textbook>(&mine),
+            tally_all::<TextbookF32>(&mine),
+        ];
+        for ((kernel, ns), tally) in KernelChoice::ALL.iter().zip(times).zip(tallies) {
+            rows.push(Row {
+                kernel: kernel.name(),
                 shape,
-                ns: time_per_test::<K>(&cases),
-                tally: total,
-            }
+                ns,
+                tally,
+            });
+        }
+    }
+    let per_family = families
+        .iter()
+        .map(|(family, _)| {
+            let cases: Vec<&Case> = family.cases.iter().collect();
+            let times = times_per_test(&cases);
+            (
+                format!("{} {}", family.shape, family.name),
+                times[0],
+                times[2],
+            )
         })
-        .collect()
+        .collect();
+    (rows, per_family)
+}
+
+/// One kernel's tally over several families.
+fn tally_all<K: Kernel>(families: &[&(Family, Vec<Reference>)]) -> Tally {
+    let mut total = Tally::default();
+    for (family, references) in families {
+        total.merge(&tally::<K>(family, references));
+    }
+    total
 }
 
 /// Median rays per second of a whole render at 640x480.
@@ -101,10 +147,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .collect();
     let cases: usize = families.iter().map(|(f, _)| f.cases.len()).sum();
 
-    let mut rows = rows_for::<Accurate>(&families);
-    rows.extend(rows_for::<StableRoots>(&families));
-    rows.extend(rows_for::<Textbook>(&families));
-    rows.extend(rows_for::<TextbookF32>(&families));
+    let (mut rows, per_family) = rows(&families);
+    // Grouped by kernel, shipped one first, as the tables read best.
+    rows.sort_by_key(|row| KernelChoice::from_name(row.kernel).map(|k| k as usize));
 
     let mut md = String::new();
     writeln!(md, "# Speed against error of the intersection kernels\n")?;
@@ -113,11 +158,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "Generated by `cargo run --release --example speed_vs_error` (do not edit by \
          hand). The hard-case suite of `tests/support/accuracy.rs` ({} families, {cases} \
          rays, seed {:#x}); errors in ulps of the exact root of the f64 problem, computed \
-         in double-double. ns is the median of 7 passes per test, on one core of the \
+         in double-double. ns is the median of 15 passes per test, the kernels taking turns, on one core of the \
          machine that ran the command. `wrong` counts hits that should be misses and \
          misses that should be hits; `ties` counts rays whose exact discriminant, bound \
-         coordinate (y = 0 or h, z = 0) or t is within a few ulps of zero, where either \
-         answer is allowed.\n",
+         coordinate (y = 0 or h, z = 0) or t is within a few ulps of zero and on which \
+         the kernel's answer differs from the reference's: there either answer is \
+         allowed.\n",
         families.len(),
         accuracy::SEED
     )?;
@@ -143,6 +189,27 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             row.tally.disagreements,
             row.tally.ties,
             row.ns / textbook_ns(row.shape)
+        );
+        println!("{line}");
+        writeln!(md, "{line}")?;
+    }
+
+    // Where the shipped kernel's time goes.
+    writeln!(md, "\n## Time per test by family\n")?;
+    writeln!(
+        md,
+        "The same timing, family by family: the families whose rays need the refinement \
+         step (grazing, huge, nearly parallel) cost most.\n"
+    )?;
+    writeln!(
+        md,
+        "| family | accurate ns | textbook ns | cost vs textbook |"
+    )?;
+    writeln!(md, "|---|---:|---:|---:|")?;
+    for (family, accurate, textbook) in &per_family {
+        let line = format!(
+            "| {family} | {accurate:.1} | {textbook:.1} | {:.2}x |",
+            accurate / textbook
         );
         println!("{line}");
         writeln!(md, "{line}")?;

@@ -1,9 +1,11 @@
 //! Double-double numbers: an f64 pair `hi + lo` that carries about 106 bits, built from
 //! the error-free transformations of Knuth (two-sum) and Dekker (two-product).
 //!
-//! The accurate kernel uses them only to evaluate a quadric at a trial point (the
-//! residual of one refinement step), where the terms cancel down to a small number and
-//! f64 would keep none of its digits. [`two_prod`] takes the product's rounding error from
+//! The accurate kernel evaluates a quadric at a trial point (the residual of one
+//! refinement step), where the terms cancel down to a small number and f64 would keep
+//! none of its digits, with [`Compensated`] sums of exact products; a general quadric's
+//! centred constants are computed once, at load, with [`Dd`] arithmetic.
+//! [`two_prod`] takes the product's rounding error from
 //! a fused multiply-add, which is exact on every machine: the kernel runs its refinement
 //! in a copy compiled for the FMA instruction when the CPU has one (checked once, at run
 //! time), and otherwise `mul_add` calls the C library's `fma`, slower, same bits.
@@ -112,6 +114,83 @@ impl Mul<Dd> for f64 {
     }
 }
 
+/// A running f64 sum whose rounding errors are gathered apart (the Sum2 and Dot2
+/// algorithms of Ogita, Rump and Oishi): the result is as accurate as if it had been
+/// summed in twice the precision and then rounded, for a fraction of double-double's cost.
+#[derive(Debug, Clone, Copy)]
+pub struct Compensated {
+    sum: f64,
+    error: f64,
+}
+
+impl Compensated {
+    /// The sum that starts at `value`.
+    #[inline(always)]
+    pub fn new(value: f64) -> Compensated {
+        Compensated {
+            sum: value,
+            error: 0.0,
+        }
+    }
+
+    /// Adds x, keeping the addition's rounding error.
+    #[inline(always)]
+    pub fn plus(self, x: f64) -> Compensated {
+        let s = two_sum(self.sum, x);
+        Compensated {
+            sum: s.hi,
+            error: self.error + s.lo,
+        }
+    }
+
+    /// Adds a b, keeping the product's and the addition's rounding errors.
+    #[inline(always)]
+    pub fn add_product(self, a: f64, b: f64) -> Compensated {
+        let p = two_prod(a, b);
+        let s = two_sum(self.sum, p.hi);
+        Compensated {
+            sum: s.hi,
+            error: self.error + (s.lo + p.lo),
+        }
+    }
+
+    /// Adds c u v for pairs u and v: c (u.hi v.hi) with its rounding errors, and the
+    /// cross terms c (u.hi v.lo + u.lo v.hi) as a correction.
+    #[inline(always)]
+    pub fn add_pair_product(self, c: f64, u: Dd, v: Dd) -> Compensated {
+        let p = two_prod(u.hi, v.hi);
+        self.add_product(c, p.hi)
+            .add_small(c * (p.lo + (u.hi * v.lo + u.lo * v.hi)))
+    }
+
+    /// Adds c u for a pair u.
+    #[inline(always)]
+    pub fn add_pair(self, c: f64, u: Dd) -> Compensated {
+        self.add_product(c, u.hi).add_small(c * u.lo)
+    }
+
+    /// Adds a term small enough that its own rounding does not matter (a correction).
+    #[inline(always)]
+    pub fn add_small(self, x: f64) -> Compensated {
+        Compensated {
+            sum: self.sum,
+            error: self.error + x,
+        }
+    }
+
+    /// The sum as a normalised pair.
+    #[inline(always)]
+    pub fn pair(self) -> Dd {
+        two_sum(self.sum, self.error)
+    }
+
+    /// The sum rounded to f64.
+    #[inline(always)]
+    pub fn value(self) -> f64 {
+        self.sum + self.error
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -136,5 +215,19 @@ mod tests {
         assert!((difference.value() - 0.2).abs() <= 1e-16, "{difference:?}");
         let plain = (1e8f64 + 1e-9) * (1e8 + 1e-9) - 1e16;
         assert_eq!(plain, 0.0);
+    }
+
+    #[test]
+    fn compensated_sum_keeps_what_cancels() {
+        // 1e16 + 1 + 1 - 1e16 = 2 exactly; in f64 each 1 is lost against 1e16 (ulp 2 there,
+        // ties to even), and the plain sum is 0.
+        let plain = 1e16f64 + 1.0 + 1.0 - 1e16;
+        assert_eq!(plain, 0.0);
+        let sum = Compensated::new(1e16).plus(1.0).plus(1.0).plus(-1e16);
+        assert_eq!(sum.value(), 2.0);
+        // (1e8 + 1)² - 1e16 - 2e8 = 1, with the square kept exact by two-prod.
+        let x = 1e8 + 1.0;
+        let sum = Compensated::new(-1e16).add_product(x, x).plus(-2e8);
+        assert_eq!(sum.value(), 1.0);
     }
 }

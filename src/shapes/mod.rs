@@ -30,7 +30,7 @@ pub use paraboloid::Paraboloid;
 pub use plane::Plane;
 pub use plane_frame::PlaneFrame;
 pub use quadratic::{Roots, solve_quadratic};
-pub use quadric::Quadric;
+pub use quadric::{Centred, Quadric};
 pub use sphere::Sphere;
 
 use crate::error::MeaningError;

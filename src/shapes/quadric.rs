@@ -8,11 +8,12 @@
 //! ```
 //! The coefficients fill the symmetric matrix Q = [A B C D; B E F G; C F H I; D G I J].
 
+use super::dd::{Dd, two_prod};
 use super::kernel::{Accurate, Kernel};
 use super::{Invalid, Ray, unit};
 use crate::error::MeaningError;
 use crate::scene_file::layout::label;
-use glam::{DMat4, DVec3, DVec4};
+use glam::{DMat3, DMat4, DVec3, DVec4};
 
 /// A general quadric surface, unbounded unless the quadric itself is closed.
 #[derive(Debug, Clone, PartialEq)]
@@ -21,6 +22,73 @@ pub struct Quadric {
     pub coefficients: [f64; 10],
     /// The symmetric 4x4 matrix Q.
     pub q: DMat4,
+    /// The same equation about a point near its centre, for the accurate kernel.
+    pub centred: Centred,
+}
+
+/// f(x) = xᵀMx + 2 dᵀx + J rewritten about an anchor point x0, so that a ray near the
+/// surface sees terms the size of the surface, not of its distance from the origin:
+///
+/// ```text
+/// f(x0 + u) = uᵀ M u + 2 g0ᵀ u + f0,   g0 = M x0 + d,   f0 = f(x0)
+/// ```
+///
+/// x0 is the centre (M x0 = -d) where there is one, and otherwise the point nearest it in
+/// the least-squares sense: a point on a cylinder's axis, a paraboloid's vertex plane.
+/// g0 and f0 are computed in double-double and rounded once.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Centred {
+    /// x0.
+    pub anchor: DVec3,
+    /// M, the upper-left 3x3 block of Q.
+    pub m: DMat3,
+    /// |M|, element by element, for error estimates.
+    pub m_abs: DMat3,
+    /// g0 = M x0 + d.
+    pub gradient: DVec3,
+    /// f0 = f(x0).
+    pub value: f64,
+}
+
+impl Centred {
+    fn new(coefficients: [f64; 10]) -> Centred {
+        let [a, b, c, d, e, f, g, h, i, j] = coefficients;
+        let m = DMat3::from_cols(
+            DVec3::new(a, b, c),
+            DVec3::new(b, e, f),
+            DVec3::new(c, f, h),
+        );
+        let linear = DVec3::new(d, g, i);
+        // x0 = -(M² + μ I)⁻¹ M d: the centre when M is invertible, the least-squares
+        // point when it is singular; μ only keeps the inverse finite.
+        let size = m.abs().to_cols_array().into_iter().fold(0.0, f64::max);
+        let normal = m * m + DMat3::from_diagonal(DVec3::splat(1e-12 * size * size));
+        let anchor = -(normal.inverse() * (m * linear));
+        let anchor = if anchor.is_finite() {
+            anchor
+        } else {
+            DVec3::ZERO
+        };
+        let x = [anchor.x, anchor.y, anchor.z];
+        let row = |k: usize| {
+            let column = m.col(k);
+            two_prod(column.x, x[0])
+                + two_prod(column.y, x[1])
+                + two_prod(column.z, x[2])
+                + Dd::new(linear[k])
+        };
+        let g0 = [row(0), row(1), row(2)];
+        let f0 = (0..3).fold(Dd::new(j), |sum, k| {
+            sum + x[k] * (g0[k] + Dd::new(linear[k]))
+        });
+        Centred {
+            anchor,
+            m,
+            m_abs: m.abs(),
+            gradient: DVec3::new(g0[0].value(), g0[1].value(), g0[2].value()),
+            value: f0.value(),
+        }
+    }
 }
 
 impl Quadric {
@@ -41,7 +109,11 @@ impl Quadric {
             DVec4::new(c, f, h, i),
             DVec4::new(d, g, i, j),
         );
-        Ok(Quadric { coefficients, q })
+        Ok(Quadric {
+            coefficients,
+            q,
+            centred: Centred::new(coefficients),
+        })
     }
 
     /// a = dᵀQd, b = 2 dᵀQp, c = pᵀQp with p = (B, 1), d = (D, 0) (note 004).

@@ -1,32 +1,35 @@
 //! The kernel `legacy-rt` ships: the exact root of the f64 problem to within a few ulps.
-//! A miss costs about what the textbook's does; a hit that needs refining costs several
-//! times more (docs/speed-vs-error.md has the figures).
+//! A typical test costs about twice the textbook's; one that needs refining, three to
+//! five times (docs/speed-vs-error.md has the figures).
 //!
 //! Three steps:
-//! 1. Move the ray's base along the ray to the point nearest the shape's centre:
-//!    B'' = B' + s0 D' with s0 = -(B'·D')/(D'·D'). The quadratic in s = t - s0 then has
-//!    coefficients the size of the shape, not of its distance, so c = f(B'') no longer
-//!    subtracts two huge numbers (a far object), and its stable roots
-//!    ([`solve_quadratic`]) keep their digits. This is the geometric form of the
-//!    discriminant, for every shape at once.
-//! 2. Estimate the error of the root from the sizes of the terms and the slope f'(t) of
-//!    the quadratic at the root. A ray that grazes the silhouette, runs nearly parallel
-//!    to a cylinder's axis or a cone's generator, or starts next to the surface has a
-//!    small slope, and there the estimate is large.
-//! 3. Only then refine: evaluate f at the root in double-double ([`Dd`]), from the
-//!    world-space numbers (B - C + t D, then `rotmat`, both without rounding), and solve
-//!    the quadratic shifted to the root, a σ² + f'(t) σ + f(t) = 0, for the correction σ.
-//!    Its a and f'(t) need only a few correct digits, f(t) needs them all.
+//! 1. Move the ray's base along the ray to the point nearest the shape's centre, in world
+//!    space: B'' = (B - C) + s0 D with s0 = -(B - C)·D. B - C is kept exactly as a
+//!    rounded difference plus its rounding error (two-sum), and each component of
+//!    s0 D + (B - C) is one fused multiply-add, rounded once on a result the size of the
+//!    shape. B'' is then good to an ulp of the shape's size, not of its distance, and so
+//!    are the coefficients of the quadratic in s = t - s0 ([`AxisQuadric::coefficients`]
+//!    after `rotmat`). This is the geometric form of the discriminant, for every shape at
+//!    once; the roots come from the stable formula ([`solve_quadratic`]).
+//! 2. Estimate the error of each root from the sizes of the terms of f and of its
+//!    gradient at the root, over the slope |f'(s)| ([`RootError`]). A ray that grazes the
+//!    silhouette, runs nearly parallel to a cylinder's axis or a cone's generator, or
+//!    starts next to a huge surface has a small slope or a small t, and there the
+//!    estimate is large. A root out of bounds by more than twice its estimate is dropped
+//!    as it is.
+//! 3. Only then refine: evaluate f at the root from the world-space numbers
+//!    (B - C + t D, then `rotmat`) with every rounding error kept ([`Compensated`]), and
+//!    solve the quadratic shifted to the root, a σ² + f'(t) σ + f(t) = 0, for the
+//!    correction σ. Its a and f'(t) need only a few correct digits, f(t) needs them all.
 //!
-//! The general `QUADRIC` has no centre to move to and its coefficients can hold a
-//! translation of 10^4 squared, so its root is always refined; a plane's dot products are
-//! recomputed in double-double when they cancel. Bound tests (local y, the plane's z = 0)
+//! The general `QUADRIC` takes the same steps about its centre
+//! ([`Centred`](crate::shapes::Centred)); a plane's dot products are recomputed with
+//! their rounding errors when they cancel. Bound tests (local y, the plane's z = 0)
 //! accept a hit within [`slack`] of the bound, so a point the scene puts exactly on a
 //! bound does not flip from pixel to pixel on the rounding of t and of the ray.
 
-use super::stable::stable_roots;
-use super::{Kernel, strict};
-use crate::shapes::dd::{Dd, two_prod, two_sum};
+use super::Kernel;
+use crate::shapes::dd::{Compensated, Dd, two_prod, two_sum};
 use crate::shapes::{AxisFrame, AxisQuadric, Plane, Quadric, Ray, RootRule, solve_quadratic};
 use glam::DVec3;
 
@@ -34,9 +37,9 @@ use glam::DVec3;
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Accurate;
 
-/// Refine when the estimated error exceeds this many EPS |t|. The estimate is a loose
-/// bound, so the value was set on the hard-case suite: at 8 its largest error is 3.7 ulps
-/// (seed 0x2026_1121); at 16 it was 3.6 and at 64 over 5 (an earlier seed).
+/// Refine when the estimated error exceeds this many EPS |t|. Set on the hard-case suite
+/// (seed 0x2026_1121): at 8 the largest error is 3.64 ulps, at 16 it is 4.94 and at 32
+/// 11.4, while the cost barely moves (refined rays are the hard ones whatever the value).
 const REFINE_ABOVE_ULPS: f64 = 8.0;
 
 /// At most this many refinement steps (each one squares the relative error).
@@ -52,11 +55,31 @@ fn slack(size: f64) -> f64 {
     8.0 * EPS * size
 }
 
-/// Whether the estimated absolute error `error_bound * EPS` of t exceeds the threshold.
-#[inline]
-fn needs_refining(error_bound: f64, t: f64) -> bool {
-    // NaN (an overflowed estimate) refines too.
-    error_bound > REFINE_ABOVE_ULPS * t.abs() || error_bound.is_nan()
+/// Step 2's estimate for one root: the root moves by at most about
+/// EPS (`spread` / `slope` + |t| / 2), where `spread` sums the sizes of the terms whose
+/// rounding perturbs f near the root and `slope` = |f'|. Kept as a fraction, so that the
+/// common case costs two multiplications and no division.
+#[derive(Clone, Copy)]
+struct RootError {
+    spread: f64,
+    slope: f64,
+}
+
+impl RootError {
+    /// Whether the estimate exceeds [`REFINE_ABOVE_ULPS`] EPS |t|. NaN (an overflowed
+    /// estimate) refines too.
+    #[inline]
+    fn needs_refining(self, t: f64) -> bool {
+        let allowed = (REFINE_ABOVE_ULPS - 0.5) * t.abs() * self.slope;
+        self.spread > allowed || self.spread.is_nan() || allowed.is_nan()
+    }
+
+    /// Whether `distance` (how far the root lies past a bound, or behind the base) is
+    /// more than twice the estimated error plus `slack`: refining cannot bring it back.
+    #[inline]
+    fn clearly_beyond(self, distance: f64, t: f64, slack: f64) -> bool {
+        distance * self.slope > 2.0 * EPS * self.spread + (EPS * t.abs() + slack) * self.slope
+    }
 }
 
 impl Kernel for Accurate {
@@ -64,61 +87,12 @@ impl Kernel for Accurate {
 
     #[inline]
     fn axis_quadric(quadric: &AxisQuadric, ray: &Ray) -> Option<f64> {
-        let frame = &quadric.frame;
-        let offset = ray.base - frame.centre;
-        let base = frame.rotate(offset);
-        let dir = frame.rotate(ray.dir);
-        // Step 1: s0 and B''. D'·D' = 1 to within rounding, so no division is needed.
-        let shift = -base.dot(dir);
-        let near = base + shift * dir;
-        let (a, b, c) = quadric.coefficients(near, dir);
-        let roots = stable_roots(a, b, c, strict(quadric.rule))?;
-        // Step 2's term sizes: f, its gradient, and how far B'' moved (the rounding of
-        // B - C, of rotmat and of B'' is an error of about EPS times that in position).
-        let largest_square = quadric.square.abs().max_element();
-        let moved = offset.abs().max_element() + shift.abs();
-        for (index, s) in roots.into_iter().enumerate() {
-            let t = shift + s;
-            let reach = near.abs().max_element() + s.abs();
-            let gradient_size = 2.0 * largest_square * reach + quadric.linear_y.abs();
-            let value_size = largest_square * reach * reach
-                + quadric.linear_y.abs() * reach
-                + quadric.constant.abs();
-            let slope = (2.0 * a * s + b).abs();
-            let error_bound = 2.0 * (value_size + gradient_size * moved) / slope + moved;
-            let (t, y) = if needs_refining(error_bound, t) {
-                refine_axis(quadric, ray, dir, a, t, index)
-            } else {
-                (t, near.y + s * dir.y)
-            };
-            match quadric.rule {
-                RootRule::Nearer => return t.is_finite().then_some(t),
-                RootRule::FirstPositiveWithin { low, high } => {
-                    let slack = slack(moved + t.abs());
-                    if t > 0.0 && low - slack <= y && y <= high + slack {
-                        return Some(t);
-                    }
-                }
-            }
-        }
-        None
+        axis_hit(quadric, ray)
     }
 
     #[inline]
     fn quadric(quadric: &Quadric, ray: &Ray) -> Option<f64> {
-        let (a, b, c) = quadric.coefficients(ray);
-        let roots = solve_quadratic(a, b, c)?;
-        for (index, t) in roots.into_iter().enumerate() {
-            // A root clearly behind the base needs no refining to be rejected.
-            if t < 0.0 && roots[1] > 0.0 && t < -1e-6 * roots[1] {
-                continue;
-            }
-            let t = refine_quadric(quadric, ray, a, t, index);
-            if t > 0.0 {
-                return Some(t);
-            }
-        }
-        None
+        quadric_hit(quadric, ray)
     }
 
     #[inline]
@@ -176,69 +150,239 @@ fma_dispatch!(
     fn plane_dd => plane_dd_any(plane: &Plane, ray: &Ray) -> Option<f64>
 );
 fma_dispatch!(
-    /// [`refine_axis_any`].
+    /// [`axis_hit_any`].
+    fn axis_hit => axis_hit_any(quadric: &AxisQuadric, ray: &Ray) -> Option<f64>
+);
+fma_dispatch!(
+    /// [`refine_axis_any`], kept out of line so that the common path stays small.
     fn refine_axis => refine_axis_any(
         quadric: &AxisQuadric, ray: &Ray, dir: DVec3, a: f64, t0: f64, index: usize
     ) -> (f64, f64)
 );
 fma_dispatch!(
-    /// [`refine_quadric_any`].
+    /// [`refine_quadric_any`], kept out of line.
     fn refine_quadric => refine_quadric_any(
         quadric: &Quadric, ray: &Ray, a: f64, t0: f64, index: usize
     ) -> f64
 );
+fma_dispatch!(
+    /// [`quadric_hit_any`].
+    fn quadric_hit => quadric_hit_any(quadric: &Quadric, ray: &Ray) -> Option<f64>
+);
+
+/// Step 1's result for a ray and a centre C.
+struct Recentred {
+    /// B - C, rounded.
+    offset: DVec3,
+    /// s0 = -(B - C)·D.
+    shift: f64,
+    /// B'' - C = (B - C) + s0 D, to an ulp of its own size.
+    near: DVec3,
+}
+
+/// Step 1, in world space: B - C exactly as offset + offset_error, then
+/// B'' - C = (B - C) + s0 D. Each fused multiply-add rounds once, on a result the size
+/// of the shape, so B'' is good to an ulp of |B'' - C|, not of |B - C|.
+#[inline(always)]
+fn recentre(ray: &Ray, centre: DVec3) -> Recentred {
+    let offset = ray.base - centre;
+    let offset_error = sum_error(ray.base, -centre, offset);
+    let shift = -offset.dot(ray.dir);
+    let near = DVec3::new(
+        shift.mul_add(ray.dir.x, offset.x),
+        shift.mul_add(ray.dir.y, offset.y),
+        shift.mul_add(ray.dir.z, offset.z),
+    ) + offset_error;
+    Recentred {
+        offset,
+        shift,
+        near,
+    }
+}
+
+/// The hit of an axis quadric (steps 1 to 3 of the module docs).
+#[inline(always)]
+fn axis_hit_any(quadric: &AxisQuadric, ray: &Ray) -> Option<f64> {
+    let frame = &quadric.frame;
+    let Recentred {
+        offset,
+        shift,
+        near: near_world,
+    } = recentre(ray, frame.centre);
+    let near = frame.rotate(near_world);
+    let dir = frame.rotate(ray.dir);
+    let (a, b, c) = quadric.coefficients(near, dir);
+    // Step 2. The terms of f and of its gradient at the root bound the rounding of
+    // c, b, a, of B'' and of rotmat; each moves the root by its size over |f'(s)|.
+    let square = quadric.square.abs();
+    let linear = quadric.linear_y.abs();
+    let constant = quadric.constant.abs();
+    let estimate = |s: f64| {
+        let reach = near.abs() + (s * dir).abs();
+        let value_size = square.dot(reach * reach) + linear * reach.y + constant;
+        let gradient_size = 2.0 * square.dot(reach) + linear;
+        RootError {
+            spread: 2.0 * value_size + gradient_size * reach.max_element(),
+            slope: (2.0 * a * s + b).abs(),
+        }
+    };
+    let RootRule::FirstPositiveWithin { low, high } = quadric.rule else {
+        // The sphere: the nearer root, which needs one division, not two.
+        let s = nearer_root(a, b, c)?;
+        let t = shift + s;
+        let t = if estimate(s).needs_refining(t) {
+            refine_axis(quadric, ray, dir, a, t, 0).0
+        } else {
+            t
+        };
+        return t.is_finite().then_some(t);
+    };
+    let roots = solve_quadratic(a, b, c)?;
+    let moved = offset.abs().max_element() + shift.abs();
+    for (index, s) in roots.into_iter().enumerate() {
+        let t = shift + s;
+        let error = estimate(s);
+        let y = near.y + s * dir.y;
+        // A root out of bounds (or behind the base) by more than twice its estimated
+        // error stays out after refining: skip it unrefined.
+        let slack = slack(moved + t.abs());
+        let beyond = |distance| error.clearly_beyond(distance, t, slack);
+        if beyond(-t) || beyond(low - y) || beyond(y - high) {
+            continue;
+        }
+        let (t, y) = if error.needs_refining(t) {
+            refine_axis(quadric, ray, dir, a, t, index)
+        } else {
+            (t, y)
+        };
+        if t > 0.0 && low - slack <= y && y <= high + slack {
+            return Some(t);
+        }
+    }
+    None
+}
+
+/// The smaller root of a s² + b s + c = 0 for a > 0 when the discriminant is positive
+/// (a tangent ray misses the sphere, spec §5.2): q / a or c / q of the stable formula,
+/// whichever is smaller, chosen by the signs.
+#[inline(always)]
+fn nearer_root(a: f64, b: f64, c: f64) -> Option<f64> {
+    let discriminant = b * b - 4.0 * a * c;
+    if !(discriminant > 0.0 && a > 0.0) {
+        return None;
+    }
+    let q = -0.5 * (b + discriminant.sqrt().copysign(b));
+    // b's sign bit decides (b = -0.0 from a ray through the centre counts as negative):
+    // set, q >= 0 and c / q is the more negative root; clear, q < 0 and q / a is.
+    Some(if b.is_sign_negative() { c / q } else { q / a })
+}
+
+/// The smallest positive root of a general quadric: the same three steps as
+/// [`axis_hit_any`], about the anchor x0 of [`Centred`](crate::shapes::Centred).
+#[inline(always)]
+fn quadric_hit_any(quadric: &Quadric, ray: &Ray) -> Option<f64> {
+    let centred = &quadric.centred;
+    let Recentred { shift, near, .. } = recentre(ray, centred.anchor);
+    let dir = ray.dir;
+    // f(x0 + u + s D) = a s² + b s + c with u = B'' - x0.
+    let m_dir = centred.m * dir;
+    let m_near = centred.m * near;
+    let a = dir.dot(m_dir);
+    let b = 2.0 * (near.dot(m_dir) + centred.gradient.dot(dir));
+    let c = near.dot(m_near) + 2.0 * centred.gradient.dot(near) + centred.value;
+    let roots = solve_quadratic(a, b, c)?;
+    let gradient_abs = centred.gradient.abs();
+    for (index, s) in roots.into_iter().enumerate() {
+        let t = shift + s;
+        let reach = near.abs() + (s * dir).abs();
+        let m_reach = centred.m_abs * reach;
+        let value_size = reach.dot(m_reach) + 2.0 * gradient_abs.dot(reach) + centred.value.abs();
+        let gradient_size = 2.0 * (m_reach + gradient_abs).element_sum();
+        let error = RootError {
+            spread: 2.0 * value_size + gradient_size * reach.max_element(),
+            slope: (2.0 * a * s + b).abs(),
+        };
+        if error.clearly_beyond(-t, t, 0.0) {
+            continue;
+        }
+        let t = if error.needs_refining(t) {
+            refine_quadric(quadric, ray, a, t, index)
+        } else {
+            t
+        };
+        if t > 0.0 {
+            return Some(t);
+        }
+    }
+    None
+}
+
+/// The rounding error of the f64 sum a + b = sum, component by component (Knuth's
+/// two-sum, exact).
+#[inline(always)]
+fn sum_error(a: DVec3, b: DVec3, sum: DVec3) -> DVec3 {
+    let b_virtual = sum - a;
+    let a_virtual = sum - b_virtual;
+    (a - a_virtual) + (b - b_virtual)
+}
 
 /// The plane's t with both dot products in double-double; `None` if N·D is zero.
 #[inline(always)]
 fn plane_dd_any(plane: &Plane, ray: &Ray) -> Option<f64> {
-    let numerator = dot_dd(plane.normal, difference_dd(plane.point, ray.base));
-    let dir = [Dd::new(ray.dir.x), Dd::new(ray.dir.y), Dd::new(ray.dir.z)];
-    let denominator = dot_dd(plane.normal, dir);
-    if denominator.hi == 0.0 {
+    let n = plane.normal;
+    let offset = plane.point - ray.base;
+    let offset_error = sum_error(plane.point, -ray.base, offset);
+    let numerator = Compensated::new(0.0)
+        .add_product(n.x, offset.x)
+        .add_product(n.y, offset.y)
+        .add_product(n.z, offset.z)
+        .add_small(n.dot(offset_error))
+        .value();
+    let denominator = Compensated::new(0.0)
+        .add_product(n.x, ray.dir.x)
+        .add_product(n.y, ray.dir.y)
+        .add_product(n.z, ray.dir.z)
+        .value();
+    if denominator == 0.0 {
         return None;
     }
-    Some(divide(numerator, denominator))
+    // Each dot product is now within an ulp of the exact one: t within 1.5 ulps.
+    Some(numerator / denominator)
 }
 
-/// B - C exactly, component by component.
+/// The local point rotmat (B - C + t D) as hi + lo pairs, exact to about 2^-106 of its
+/// size: B - C is `offset` (hi) + `offset_error` (lo), exact.
 #[inline(always)]
-fn difference_dd(b: DVec3, c: DVec3) -> [Dd; 3] {
-    [two_sum(b.x, -c.x), two_sum(b.y, -c.y), two_sum(b.z, -c.z)]
-}
-
-/// v · w with v in f64 and w in double-double.
-#[inline(always)]
-fn dot_dd(v: DVec3, w: [Dd; 3]) -> Dd {
-    v.x * w[0] + v.y * w[1] + v.z * w[2]
-}
-
-/// n / d rounded to f64 with one correction step (a few tenths of an ulp).
-#[inline(always)]
-fn divide(n: Dd, d: Dd) -> f64 {
-    let t = n.hi / d.hi;
-    let remainder = n - t * d;
-    t + remainder.value() / d.hi
-}
-
-/// The local point rotmat (B - C + t D) in double-double.
-#[inline(always)]
-fn local_point(frame: &AxisFrame, ray: &Ray, t: f64) -> [Dd; 3] {
-    let [x, y, z] = difference_dd(ray.base, frame.centre);
-    let world = [
-        x + two_prod(t, ray.dir.x),
-        y + two_prod(t, ray.dir.y),
-        z + two_prod(t, ray.dir.z),
-    ];
+fn local_point(
+    frame: &AxisFrame,
+    offset: DVec3,
+    offset_error: DVec3,
+    dir: DVec3,
+    t: f64,
+) -> [Dd; 3] {
+    let world = |i: usize| {
+        let step = two_prod(t, dir[i]);
+        let sum = two_sum(offset[i], step.hi);
+        Dd {
+            hi: sum.hi,
+            lo: sum.lo + (step.lo + offset_error[i]),
+        }
+    };
+    let world = [world(0), world(1), world(2)];
     if frame.identity {
         return world;
     }
     // Row i of rotmat is column i of irot.
+    let row = |axis: DVec3| {
+        Compensated::new(0.0)
+            .add_product(axis.x, world[0].hi)
+            .add_product(axis.y, world[1].hi)
+            .add_product(axis.z, world[2].hi)
+            .add_small(axis.x * world[0].lo + axis.y * world[1].lo + axis.z * world[2].lo)
+            .pair()
+    };
     let irot = &frame.irot;
-    [
-        dot_dd(irot.x_axis, world),
-        dot_dd(irot.y_axis, world),
-        dot_dd(irot.z_axis, world),
-    ]
+    [row(irot.x_axis), row(irot.y_axis), row(irot.z_axis)]
 }
 
 /// One step's correction: the root `index` (0 the smaller, 1 the larger) of
@@ -263,16 +407,25 @@ fn refine_axis_any(
     index: usize,
 ) -> (f64, f64) {
     let (mut t, mut y) = (t0, f64::NAN);
+    let offset = ray.base - quadric.frame.centre;
+    let offset_error = sum_error(ray.base, -quadric.frame.centre, offset);
     for _ in 0..MAX_STEPS {
-        let [x, ly, z] = local_point(&quadric.frame, ray, t);
+        let [x, ly, z] = local_point(&quadric.frame, offset, offset_error, ray.dir, t);
+        // f = Σ αᵢ Lᵢ² + β Ly + γ with Lᵢ = hi + lo: hi² exactly by two-prod, the cross
+        // term 2 hi lo as a correction, lo² below the precision.
         let sq = quadric.square;
-        let value = sq.x * (x * x)
-            + sq.y * (ly * ly)
-            + sq.z * (z * z)
-            + quadric.linear_y * ly
-            + Dd::new(quadric.constant);
+        let mut value = Compensated::new(quadric.constant)
+            .add_product(quadric.linear_y, ly.hi)
+            .add_small(quadric.linear_y * ly.lo);
+        for (alpha, coordinate) in [(sq.x, x), (sq.y, ly), (sq.z, z)] {
+            let square = two_prod(coordinate.hi, coordinate.hi);
+            value = value
+                .add_product(alpha, square.hi)
+                .add_small(alpha * (square.lo + 2.0 * coordinate.hi * coordinate.lo));
+        }
         let point = DVec3::new(x.hi, ly.hi, z.hi);
-        let slope = quadric.gradient(point).dot(dir);
+        let gradient = quadric.gradient(point);
+        let slope = gradient.dot(dir);
         let sigma = correction(a, slope, value.value(), index);
         let next = t + sigma;
         if !next.is_finite() {
@@ -281,8 +434,7 @@ fn refine_axis_any(
         y = ly.value() + sigma * dir.y;
         // One step leaves an error of about σ times the relative error of the slope,
         // EPS |∇f| / |f'|; another step only if that is more than half an ulp.
-        let gradient = quadric.gradient(point).length();
-        let settled = sigma.abs() * gradient <= 0.5 * slope.abs() * next.abs();
+        let settled = sigma.abs() * gradient.abs().element_sum() <= 0.5 * slope.abs() * next.abs();
         t = next;
         if settled {
             break;
@@ -303,20 +455,27 @@ fn refine_quadric_any(quadric: &Quadric, ray: &Ray, a: f64, t0: f64, index: usiz
     let dir = ray.dir.extend(0.0);
     let mut t = t0;
     for _ in 0..MAX_STEPS {
-        let x = Dd::new(ray.base.x) + two_prod(t, ray.dir.x);
-        let y = Dd::new(ray.base.y) + two_prod(t, ray.dir.y);
-        let z = Dd::new(ray.base.z) + two_prod(t, ray.dir.z);
+        // p = B + t D as hi + lo pairs (the sum's and the product's rounding in lo).
+        let coordinate = |i: usize| {
+            let step = two_prod(t, ray.dir[i]);
+            let sum = two_sum(ray.base[i], step.hi);
+            Dd {
+                hi: sum.hi,
+                lo: sum.lo + step.lo,
+            }
+        };
+        let (x, y, z) = (coordinate(0), coordinate(1), coordinate(2));
         // A x² + E y² + H z² + 2(B xy + C xz + F yz) + 2(D x + G y + I z) + J.
-        let value = qa * (x * x)
-            + qe * (y * y)
-            + qh * (z * z)
-            + (2.0 * qb) * (x * y)
-            + (2.0 * qc) * (x * z)
-            + (2.0 * qf) * (y * z)
-            + (2.0 * qd) * x
-            + (2.0 * qg) * y
-            + (2.0 * qi) * z
-            + Dd::new(qj);
+        let value = Compensated::new(qj)
+            .add_pair_product(qa, x, x)
+            .add_pair_product(qe, y, y)
+            .add_pair_product(qh, z, z)
+            .add_pair_product(2.0 * qb, x, y)
+            .add_pair_product(2.0 * qc, x, z)
+            .add_pair_product(2.0 * qf, y, z)
+            .add_pair(2.0 * qd, x)
+            .add_pair(2.0 * qg, y)
+            .add_pair(2.0 * qi, z);
         let point = DVec3::new(x.hi, y.hi, z.hi).extend(1.0);
         let slope = 2.0 * dir.dot(quadric.q * point);
         let sigma = correction(a, slope, value.value(), index);
@@ -324,7 +483,7 @@ fn refine_quadric_any(quadric: &Quadric, ray: &Ray, a: f64, t0: f64, index: usiz
         if !next.is_finite() {
             break;
         }
-        let gradient = (quadric.q * point).truncate().length();
+        let gradient = (quadric.q * point).truncate().abs().element_sum();
         let settled = sigma.abs() * gradient <= 0.25 * slope.abs() * next.abs();
         t = next;
         if settled {
@@ -332,4 +491,44 @@ fn refine_quadric_any(quadric: &Quadric, ray: &Ray, a: f64, t0: f64, index: usiz
         }
     }
     t
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn nearer_root_follows_the_sign_bit_of_b() {
+        // (s - 2)(s + 2) = s² - 4: the nearer root is -2 whichever zero b is.
+        assert_eq!(nearer_root(1.0, 0.0, -4.0), Some(-2.0));
+        assert_eq!(nearer_root(1.0, -0.0, -4.0), Some(-2.0));
+        // (s - 1)(s - 3) = s² - 4s + 3 and (s + 1)(s + 3) = s² + 4s + 3.
+        assert_eq!(nearer_root(1.0, -4.0, 3.0), Some(1.0));
+        assert_eq!(nearer_root(1.0, 4.0, 3.0), Some(-3.0));
+        // A tangent ray (double root) misses the sphere.
+        assert_eq!(nearer_root(1.0, -4.0, 4.0), None);
+    }
+
+    #[test]
+    fn a_ray_from_the_centre_finds_the_negative_root_in_every_direction() {
+        let sphere = crate::shapes::Sphere::new(DVec3::new(0.0, 0.0, 3.0), 0.5, "s").unwrap();
+        for dir in [
+            DVec3::X,
+            DVec3::NEG_X,
+            DVec3::Y,
+            DVec3::NEG_Y,
+            DVec3::Z,
+            DVec3::NEG_Z,
+        ] {
+            let ray = Ray {
+                base: DVec3::new(0.0, 0.0, 3.0),
+                dir,
+            };
+            assert_eq!(
+                Accurate::axis_quadric(&sphere.equation, &ray),
+                Some(-0.5),
+                "{dir}"
+            );
+        }
+    }
 }

@@ -3,8 +3,8 @@
 //!
 //! - [`Accurate`], the one `legacy-rt` ships: stable roots of a quadratic moved next to
 //!   the shape, then, where a cheap error estimate says the f64 digits are not enough, one
-//!   or two refinement steps whose residual is evaluated in double-double. Within 4 ulps
-//!   of the exact root on every hard case of the test suite.
+//!   or two refinement steps whose residual is evaluated with error-free sums and
+//!   products. Within 4 ulps of the exact root on every hard case of the test suite.
 //! - [`StableRoots`]: the coefficients as the notes write them, solved with the
 //!   cancellation-free root formula only.
 //! - [`Textbook`]: the notes' formula (-b ± sqrt(b² - 4ac)) / 2a, in f64.
