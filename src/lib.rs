@@ -2,9 +2,10 @@
 //! ray-tracing course.
 //!
 //! A scene flows text → records → typed scene → pixels → file:
-//! [`scene_file`] reads the text into records (syntax only), [`scene`] validates them into
-//! typed lights and [`shapes`], [`render`] traces them as the course's C program did, and
-//! [`image_output`] writes PPM or PNG.
+//! [`scene_file`] reads the text into records (syntax only), [`scene`] validates them
+//! into typed lights and [`shapes`], [`render`](mod@render) traces them as the course's C
+//! program did, and [`image_output`] writes PPM or PNG (docs/architecture.md has a
+//! paragraph per module).
 //! The format and the rendering rules are those of the project's spec (`spec §N` in the
 //! comments); the formulas are those of the course notes.
 //!
@@ -14,6 +15,8 @@
 //! assert_eq!(scene.objects.len(), 1);
 //! assert_eq!(scene.default_size(), (640, 480));
 //! ```
+
+#![warn(missing_docs)]
 
 pub mod error;
 pub mod image_output;

@@ -11,6 +11,10 @@ mod common;
 mod course_scenes;
 #[path = "integration/degenerate.rs"]
 mod degenerate;
+#[path = "integration/docs.rs"]
+mod docs;
+#[path = "integration/errata.rs"]
+mod errata;
 #[path = "integration/errors.rs"]
 mod errors;
 #[path = "integration/examples.rs"]

@@ -1,7 +1,7 @@
 //! Meaning: records to a validated, typed scene (spec §3-§5).
 //!
 //! [`load`] runs the whole front end: [`crate::scene_file`] reads the text into records,
-//! then [`build`] turns each record into a light or an [`Object`], validating its numbers
+//! then `build` turns each record into a light or an [`Object`], validating its numbers
 //! and precomputing everything that depends only on the object (frames, `rotmat`, `irot`,
 //! `k`, unit normals, spotlight cosines, textures).
 

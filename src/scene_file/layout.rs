@@ -7,35 +7,65 @@
 /// The labels of the groups. The meaning layer looks groups up by these names, and error
 /// messages quote them ("the sphere's radius line").
 pub mod label {
+    /// The "world window" group.
     pub const WINDOW: &str = "world window";
+    /// The "viewpoint" group.
     pub const VIEWPOINT: &str = "viewpoint";
+    /// The "ambient" group.
     pub const AMBIENT: &str = "ambient";
+    /// The "diffuse" group.
     pub const DIFFUSE: &str = "diffuse";
+    /// The "specular" group.
     pub const SPECULAR: &str = "specular";
+    /// The "background ambient" group.
     pub const BACK_AMBIENT: &str = "background ambient";
+    /// The "background diffuse" group.
     pub const BACK_DIFFUSE: &str = "background diffuse";
+    /// The "background specular" group.
     pub const BACK_SPECULAR: &str = "background specular";
+    /// The "emissivity" group.
     pub const EMISSIVITY: &str = "emissivity";
+    /// The "location" group.
     pub const LOCATION: &str = "location";
+    /// The "aim point" group.
     pub const AIM: &str = "aim point";
+    /// The "half-angle" group.
     pub const HALF_ANGLE: &str = "half-angle";
+    /// The "centre" group.
     pub const CENTRE: &str = "centre";
+    /// The "radius" group.
     pub const RADIUS: &str = "radius";
+    /// The "normal" group.
     pub const NORMAL: &str = "normal";
+    /// The "point" group.
     pub const POINT: &str = "point";
+    /// The "x direction" group.
     pub const XDIR: &str = "x direction";
+    /// The "size" group.
     pub const SIZE: &str = "size";
+    /// The "tile size" group.
     pub const TILE_SIZE: &str = "tile size";
+    /// The "texture file" group.
     pub const TEXTURE: &str = "texture file";
+    /// The "mode" group.
     pub const MODE: &str = "mode";
+    /// The "shader index" group.
     pub const SHADER: &str = "shader index";
+    /// The "vertex" group.
     pub const VERTEX: &str = "vertex";
+    /// The "base centre" group.
     pub const BASE: &str = "base centre";
+    /// The "apex" group.
     pub const APEX: &str = "apex";
+    /// The "waist centre" group.
     pub const WAIST_CENTRE: &str = "waist centre";
+    /// The "centre line" group.
     pub const CENTRE_LINE: &str = "centre line";
+    /// The "radius and height" group.
     pub const RADIUS_HEIGHT: &str = "radius and height";
+    /// The "end radius and half-height" group.
     pub const END_RADIUS_HALF_HEIGHT: &str = "end radius and half-height";
+    /// The "waist radius" group.
     pub const WAIST_RADIUS: &str = "waist radius";
     /// The ten numbers on the QUADRIC line (not a group of its own).
     pub const COEFFICIENTS: &str = "coefficients";

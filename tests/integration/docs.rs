@@ -1,0 +1,185 @@
+//! Keeps the docs honest (issue 5): every code reference in `docs/*.md` and `README.md`
+//! names a file that exists and an item that the file defines, and every scene snippet
+//! of `docs/scene-format.md` loads and renders (or, marked `scene-error`, fails to load).
+//!
+//! A code reference is a backticked span that starts with `src/`, `tests/`, `examples/`
+//! or `bench/` and names a file, optionally followed by `::` and an item path:
+//! `src/shapes/quadric.rs::Quadric::coefficients` must name a file that defines a
+//! `Quadric` (struct, enum, trait or impl) and a `fn coefficients`.
+
+use legacy_rt::render::{Options, render};
+use std::path::PathBuf;
+
+/// The crate root.
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// The Markdown files the check covers.
+fn documents() -> Vec<PathBuf> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(root().join("docs"))
+        .unwrap()
+        .map(|entry| entry.unwrap().path())
+        .filter(|path| path.extension().is_some_and(|e| e == "md"))
+        .collect();
+    files.push(root().join("README.md"));
+    files.sort();
+    files
+}
+
+/// The backticked spans of a Markdown text that look like code references.
+fn references(text: &str) -> Vec<String> {
+    let prefixes = ["src/", "tests/", "examples/", "bench/"];
+    text.split('`')
+        .skip(1)
+        .step_by(2)
+        .filter(|span| prefixes.iter().any(|p| span.starts_with(p)))
+        .filter(|span| !span.contains(char::is_whitespace))
+        .map(str::to_string)
+        .collect()
+}
+
+/// Whether `name` follows `keyword ` somewhere in `source` as a whole word.
+fn defined_as(source: &str, keyword: &str, name: &str) -> bool {
+    let needle = format!("{keyword} {name}");
+    source.match_indices(&needle).any(|(at, _)| {
+        let after = source[at + needle.len()..].chars().next();
+        let before = source[..at].chars().next_back();
+        !after.is_some_and(|c| c.is_alphanumeric() || c == '_')
+            && !before.is_some_and(|c| c.is_alphanumeric() || c == '_')
+    })
+}
+
+/// Whether `source` defines an item called `name` (any kind, or an impl of it).
+fn defines(source: &str, name: &str) -> bool {
+    let keywords = [
+        "fn",
+        "struct",
+        "enum",
+        "trait",
+        "mod",
+        "const",
+        "static",
+        "type",
+        "macro_rules!",
+        "impl",
+        "for",
+    ];
+    keywords.iter().any(|k| defined_as(source, k, name))
+}
+
+/// What is wrong with one reference, if anything.
+fn check(reference: &str) -> Option<String> {
+    let (path, items) = match reference.split_once("::") {
+        Some((path, items)) => (path, Some(items)),
+        None => (reference, None),
+    };
+    let file = root().join(path);
+    if !file.exists() {
+        return Some(format!("`{reference}`: no file {path}"));
+    }
+    let items = items?;
+    let source = std::fs::read_to_string(&file).ok()?;
+    items
+        .split("::")
+        .find(|item| !defines(&source, item))
+        .map(|item| format!("`{reference}`: {path} defines no `{item}`"))
+}
+
+#[test]
+fn every_code_reference_in_the_docs_exists() {
+    let mut problems = Vec::new();
+    let mut count = 0;
+    for document in documents() {
+        let text = std::fs::read_to_string(&document).unwrap();
+        for reference in references(&text) {
+            count += 1;
+            if let Some(problem) = check(&reference) {
+                let name = document.strip_prefix(root()).unwrap().display();
+                problems.push(format!("{name}: {problem}"));
+            }
+        }
+    }
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+    // The formulas document alone cites over a hundred places; a parser that found
+    // none would pass vacuously.
+    assert!(count > 100, "only {count} code references found");
+}
+
+#[test]
+fn the_reference_check_fails_on_a_renamed_item_or_a_moved_file() {
+    assert_eq!(check("src/shapes/quadric.rs::Quadric::coefficients"), None);
+    assert!(check("src/shapes/quadric.rs::Quadric::coefficients_renamed").is_some());
+    assert!(check("src/shapes/moved.rs").is_some());
+    assert!(check("src/shapes/quadric.rs::Sphere").is_some());
+    // Whole words only: `fn hit_with` does not define `hit`.
+    assert!(!defines("fn hit_with() {}", "hit"));
+    assert!(defines("impl Kernel for Accurate {", "Accurate"));
+}
+
+/// The fenced blocks of a Markdown text whose info string is `tag`.
+fn fenced_blocks(text: &str, tag: &str) -> Vec<String> {
+    let mut blocks = Vec::new();
+    let mut current: Option<String> = None;
+    for line in text.lines() {
+        match current.as_mut() {
+            None if line.trim_start().strip_prefix("```") == Some(tag) => {
+                current = Some(String::new())
+            }
+            Some(_) if line.trim_start().starts_with("```") => blocks.push(current.take().unwrap()),
+            Some(block) => {
+                block.push_str(line);
+                block.push('\n');
+            }
+            None => {}
+        }
+    }
+    blocks
+}
+
+/// docs/scene-format.md.
+fn scene_format() -> String {
+    std::fs::read_to_string(root().join("docs/scene-format.md")).unwrap()
+}
+
+#[test]
+fn every_scene_snippet_in_the_format_guide_loads_and_renders() {
+    // Texture file names in snippets are relative to the crate root, as the tests run.
+    assert_eq!(std::env::current_dir().unwrap(), root());
+    let snippets = fenced_blocks(&scene_format(), "scene");
+    // One per type code the format accepts (10, 11, 13-17, 19-24) and QUADRIC.
+    assert!(snippets.len() >= 14, "{} scene snippets", snippets.len());
+    for snippet in &snippets {
+        let scene = legacy_rt::load(snippet)
+            .unwrap_or_else(|e| panic!("snippet does not load:\n{snippet}\n{e}"));
+        let (image, _) = render(&scene, &Options::new(40, 30), |_| {});
+        assert_eq!((image.width, image.height), (40, 30));
+        // Every snippet shows its object: some pixel is not black.
+        assert!(
+            image.pixels.iter().any(|&pixel| pixel != [0, 0, 0]),
+            "snippet renders black:\n{snippet}"
+        );
+    }
+}
+
+#[test]
+fn every_error_snippet_in_the_format_guide_fails_to_load() {
+    let snippets = fenced_blocks(&scene_format(), "scene-error");
+    assert!(snippets.len() >= 2, "{} error snippets", snippets.len());
+    for snippet in &snippets {
+        assert!(
+            legacy_rt::load(snippet).is_err(),
+            "snippet loads but should not:\n{snippet}"
+        );
+    }
+}
+
+#[test]
+fn fenced_blocks_are_found_by_tag() {
+    let text = "a\n```scene\n8 6\n0 0 3\n```\n```scene-error\n12\n```\n";
+    assert_eq!(
+        fenced_blocks(text, "scene"),
+        vec!["8 6\n0 0 3\n".to_string()]
+    );
+    assert_eq!(fenced_blocks(text, "scene-error"), vec!["12\n".to_string()]);
+}
