@@ -4,7 +4,7 @@
 //! Run: `cargo bench --bench render` (add `-- --runs N` for more runs). Course scenes are
 //! read from `../shared/course-scenes` and skipped with a message where it is absent.
 
-use legacy_rt::render::{DEFAULT_MAX_DIST, Options, render};
+use legacy_rt::render::{Options, render};
 use std::path::Path;
 use std::time::Instant;
 
@@ -23,12 +23,7 @@ fn main() {
         root.join("../shared/course-scenes/d04.txt"),
         root.join("examples/quadrics_gallery.txt"),
     ];
-    let options = Options {
-        width: 1024,
-        height: 768,
-        max_dist: DEFAULT_MAX_DIST,
-        kernel: Default::default(),
-    };
+    let options = Options::new(1024, 768);
     println!("1024x768, single thread, median of {runs} runs");
     println!(
         "{:<22} {:>8} {:>10} {:>12} {:>14} {:>12}",

@@ -23,6 +23,7 @@ Examples:
   legacy-rt --max-dist 64 < scene.txt > image.ppm
   legacy-rt --dump < scene.txt                 the typed scene, with precomputed values
   legacy-rt --kernel textbook < s.txt > t.ppm  as a tracer using the notes' root formula
+  legacy-rt --threads 0 < scene.txt > image.ppm  on every core, same bytes
 
 The scene is read from standard input; the image goes to standard output (or -o FILE);
 errors go to standard error with the line and column to fix, and then nothing at all is
@@ -63,6 +64,11 @@ struct Args {
     /// missing pixels come from; see docs/speed-vs-error.md
     #[arg(long, value_name = "KERNEL", default_value = "accurate", value_parser = kernel)]
     kernel: KernelChoice,
+
+    /// Render on N threads; 0 means one per core. The image is the same bytes for every N
+    /// (1, the default, is the course program's single thread)
+    #[arg(long, value_name = "N", default_value_t = 1)]
+    threads: usize,
 }
 
 /// Parses a `--kernel` name.
@@ -150,10 +156,10 @@ fn run(args: &Args) -> Result<(), Failure> {
         )));
     }
     let options = legacy_rt::Options {
-        width: width as usize,
-        height: height as usize,
         max_dist: args.max_dist,
         kernel: args.kernel,
+        threads: args.threads,
+        ..legacy_rt::Options::new(width as usize, height as usize)
     };
     let bar = std::io::stderr().is_terminal().then(|| {
         let bar = indicatif::ProgressBar::new(height);

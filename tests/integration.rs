@@ -19,6 +19,8 @@ mod errata;
 mod errors;
 #[path = "integration/examples.rs"]
 mod examples;
+#[path = "integration/performance.rs"]
+mod performance;
 #[path = "integration/pixels.rs"]
 mod pixels;
 #[path = "integration/robustness.rs"]

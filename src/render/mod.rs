@@ -5,8 +5,10 @@
 //! the hit point sees (§4.3), divided by the distance travelled so far (§4.2), plus the
 //! mirror reflection weighted by the specular triple (§4.5).
 
+mod bvh;
 mod shading;
 
+pub use bvh::{Bvh, MIN_OBJECTS as BVH_MIN_OBJECTS};
 pub use shading::{Screen, material_at};
 
 use crate::scene::{Light, Scene};
@@ -33,6 +35,13 @@ pub struct Options {
     pub max_dist: f64,
     /// How ray-shape distances are computed; [`KernelChoice::Accurate`] unless comparing.
     pub kernel: KernelChoice,
+    /// Worker threads: 1 renders on the calling thread (the legacy behaviour), 0 uses
+    /// every core. The image is the same bytes for every value.
+    pub threads: usize,
+    /// Use the bounding volume hierarchy of `src/render/bvh.rs` where the scene has
+    /// enough bounded objects for it to pay off; `false` forces the legacy linear scan
+    /// (for measurements and tests: the image is the same either way).
+    pub accelerate: bool,
 }
 
 impl Options {
@@ -43,6 +52,8 @@ impl Options {
             height,
             max_dist: DEFAULT_MAX_DIST,
             kernel: KernelChoice::Accurate,
+            threads: 1,
+            accelerate: true,
         }
     }
 }
@@ -67,6 +78,23 @@ pub struct Stats {
     pub shadow: u64,
     /// One per mirror bounce.
     pub reflected: u64,
+}
+
+impl std::ops::Add for Stats {
+    type Output = Stats;
+    fn add(self, other: Stats) -> Stats {
+        Stats {
+            camera: self.camera + other.camera,
+            shadow: self.shadow + other.shadow,
+            reflected: self.reflected + other.reflected,
+        }
+    }
+}
+
+impl std::ops::AddAssign for Stats {
+    fn add_assign(&mut self, other: Stats) {
+        *self = *self + other;
+    }
 }
 
 impl Stats {
@@ -136,23 +164,56 @@ fn render_with<K: Kernel>(
 ) -> (Image, Stats) {
     let camera = Camera::new(scene, options);
     let tracer = Tracer::<K>::new(scene, options);
-    let mut stats = Stats::default();
-    let mut pixels = Vec::with_capacity(options.width * options.height);
-    for row in 0..options.height {
-        let y = options.height - 1 - row;
-        for x in 0..options.width {
+    let (width, height) = (options.width, options.height);
+    let mut pixels = vec![[0u8; 3]; width * height];
+    // One output row: pixel y = height - 1 - row (spec §4.1, top row first).
+    let render_row = |row: usize, out: &mut [[u8; 3]]| {
+        let mut stats = Stats::default();
+        let y = height - 1 - row;
+        for (x, pixel) in out.iter_mut().enumerate() {
             stats.camera += 1;
             let colour = match camera.ray(x, y) {
                 Some(ray) => tracer.trace(ray, &mut stats),
                 None => DVec3::ZERO,
             };
-            pixels.push(colour.to_array().map(to_byte));
+            *pixel = colour.to_array().map(to_byte);
         }
-        progress(row + 1);
+        stats
+    };
+    let mut stats = Stats::default();
+    let pool = match options.threads {
+        1 => None,
+        n => rayon::ThreadPoolBuilder::new().num_threads(n).build().ok(),
+    };
+    match pool {
+        None => {
+            for (row, out) in pixels.chunks_mut(width).enumerate() {
+                stats += render_row(row, out);
+                progress(row + 1);
+            }
+        }
+        Some(pool) => {
+            // Bands of rows, each spread over the pool, so that progress is reported
+            // from this thread. Every pixel is computed exactly as on one thread; only
+            // the order differs, so the bytes are the same.
+            use rayon::prelude::*;
+            let band = 4 * pool.current_num_threads();
+            for (index, chunk) in pixels.chunks_mut(band * width).enumerate() {
+                let first = index * band;
+                stats += pool.install(|| {
+                    chunk
+                        .par_chunks_mut(width)
+                        .enumerate()
+                        .map(|(row, out)| render_row(first + row, out))
+                        .reduce(Stats::default, |a, b| a + b)
+                });
+                progress((first + band).min(height));
+            }
+        }
     }
     let image = Image {
-        width: options.width,
-        height: options.height,
+        width,
+        height,
         pixels,
     };
     (image, stats)
@@ -175,6 +236,8 @@ pub fn ray_trace(scene: &Scene, options: &Options, ray: Ray) -> DVec3 {
 /// The scene and what every ray needs of the options; `K` computes the hits.
 struct Tracer<'a, K> {
     scene: &'a Scene,
+    /// The hierarchy over the bounded objects, when there are enough of them.
+    bvh: Option<Bvh>,
     max_dist: f64,
     screen: Screen,
     kernel: PhantomData<K>,
@@ -188,6 +251,7 @@ impl<'a, K: Kernel> Tracer<'a, K> {
         };
         Tracer {
             scene,
+            bvh: options.accelerate.then(|| Bvh::new(scene)).flatten(),
             max_dist: options.max_dist,
             screen,
             kernel: PhantomData,
@@ -198,6 +262,15 @@ impl<'a, K: Kernel> Tracer<'a, K> {
     /// earlier object (spec §4.6).
     #[inline]
     fn closest_hit(&self, ray: &Ray, last_hit: Option<usize>) -> Option<(usize, f64)> {
+        if let Some(bvh) = &self.bvh {
+            return bvh.closest(ray, |index| {
+                if Some(index) == last_hit {
+                    return None;
+                }
+                let t = self.scene.objects[index].shape.hit_with::<K>(ray)?;
+                (t > 0.0).then_some(t)
+            });
+        }
         let mut best: Option<(usize, f64)> = None;
         for (index, object) in self.scene.objects.iter().enumerate() {
             if Some(index) == last_hit {
@@ -216,17 +289,17 @@ impl<'a, K: Kernel> Tracer<'a, K> {
     /// Whether any object but `skip` lies on `ray` closer than `dist` (spec §4.3).
     #[inline]
     fn blocked(&self, ray: &Ray, skip: usize, dist: f64) -> bool {
-        self.scene
-            .objects
-            .iter()
-            .enumerate()
-            .any(|(index, object)| {
-                index != skip
-                    && object
-                        .shape
-                        .hit_with::<K>(ray)
-                        .is_some_and(|t| t > 0.0 && t < dist)
-            })
+        let blocks = |index: usize| {
+            index != skip
+                && self.scene.objects[index]
+                    .shape
+                    .hit_with::<K>(ray)
+                    .is_some_and(|t| t > 0.0 && t < dist)
+        };
+        match &self.bvh {
+            Some(bvh) => bvh.any(ray, dist, blocks),
+            None => (0..self.scene.objects.len()).any(blocks),
+        }
     }
 
     /// ray_trace of spec §4.2, with the mirror recursion unrolled into a loop: the colour

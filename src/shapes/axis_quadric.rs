@@ -85,4 +85,49 @@ impl AxisQuadric {
         gradient.y += self.linear_y;
         gradient
     }
+
+    /// An axis-aligned world box that holds every hit this shape can report, or `None`
+    /// if the equation is not one of the closed forms above (for the BVH of
+    /// `src/render/bvh.rs`). Locally the shape lies within y in its bounds (the sphere:
+    /// ±r) and within the largest radius it reaches there; the box holds that cylinder's
+    /// eight corners turned back to the world.
+    pub fn bounds(&self) -> Option<(DVec3, DVec3)> {
+        let DVec3 {
+            x: ax,
+            y: ay,
+            z: az,
+        } = self.square;
+        if ax <= 0.0 || ax != az {
+            return None;
+        }
+        let (low, high) = match self.rule {
+            RootRule::Nearer if ay == ax && self.linear_y == 0.0 => {
+                let r = (-self.constant / ax).sqrt();
+                (-r, r)
+            }
+            RootRule::Nearer => return None,
+            RootRule::FirstPositiveWithin { low, high } => (low, high),
+        };
+        // The squared radius at height y, x² + z² = -(αy y² + β y + γ) / αx, is largest
+        // at an end of [low, high] or at its vertex.
+        let radius_sq = |y: f64| -(ay * y * y + self.linear_y * y + self.constant) / ax;
+        let mut largest = radius_sq(low).max(radius_sq(high));
+        if ay != 0.0 {
+            largest = largest.max(radius_sq((-self.linear_y / (2.0 * ay)).clamp(low, high)));
+        }
+        let r = largest.max(0.0).sqrt();
+        if !(r.is_finite() && low.is_finite() && high.is_finite()) {
+            return None;
+        }
+        let mut min = DVec3::splat(f64::INFINITY);
+        let mut max = DVec3::splat(f64::NEG_INFINITY);
+        for corner in 0..8 {
+            let pick = |bit: usize, a: f64, b: f64| if corner & bit == 0 { a } else { b };
+            let local = DVec3::new(pick(1, -r, r), pick(2, low, high), pick(4, -r, r));
+            let world = self.frame.irot * local + self.frame.centre;
+            min = min.min(world);
+            max = max.max(world);
+        }
+        Some((min, max))
+    }
 }

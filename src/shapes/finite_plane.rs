@@ -41,6 +41,17 @@ impl FinitePlane {
         Ok(FinitePlane { frame, size })
     }
 
+    /// The box around the rectangle's four corners.
+    pub fn bounds(&self) -> (DVec3, DVec3) {
+        let origin = self.frame.plane.point;
+        let x = self.frame.rot.row(0) * self.size.x;
+        let y = self.frame.rot.row(1) * self.size.y;
+        let corners = [origin, origin + x, origin + y, origin + x + y];
+        let min = corners.into_iter().fold(DVec3::INFINITY, DVec3::min);
+        let max = corners.into_iter().fold(DVec3::NEG_INFINITY, DVec3::max);
+        (min, max)
+    }
+
     /// The plane's hit, if q = rot (H - point) lies in the rectangle.
     #[inline]
     pub fn hit(&self, ray: &Ray) -> Option<f64> {

@@ -166,6 +166,20 @@ impl Shape {
         }
     }
 
+    /// An axis-aligned box (min, max) that holds every hit this shape can report, or
+    /// `None` for the unbounded ones: planes, tiled and procedural planes, `QUADRIC`.
+    pub fn bounds(&self) -> Option<(DVec3, DVec3)> {
+        match self {
+            Shape::Sphere(s) => s.equation.bounds(),
+            Shape::Paraboloid(s) => s.equation.bounds(),
+            Shape::Cylinder(s) => s.equation.bounds(),
+            Shape::Cone(s) => s.equation.bounds(),
+            Shape::Hyperboloid(s) => s.equation.bounds(),
+            Shape::FinitePlane(s) => Some(s.bounds()),
+            Shape::Plane(_) | Shape::FramedPlane(_) | Shape::Quadric(_) => None,
+        }
+    }
+
     /// Point and normal where `ray` meets this shape at distance `t` (from [`Shape::hit`]).
     pub fn surface(&self, ray: &Ray, t: f64) -> Surface {
         let point = ray.base + t * ray.dir;

@@ -11,10 +11,8 @@ const MIRROR: &str = "8 6\n0 0 3\n14\n0.5 0.5 0.5\n0 0 0\n0.25 0.5 1\n0 1 0\n0 -
 fn ppm_of(text: &str, width: usize, height: usize, max_dist: f64) -> Vec<u8> {
     let scene = legacy_rt::load(text).unwrap();
     let options = Options {
-        width,
-        height,
         max_dist,
-        kernel: Default::default(),
+        ..Options::new(width, height)
     };
     legacy_rt::image_output::ppm(&render(&scene, &options, |_| {}).0)
 }
@@ -145,4 +143,21 @@ fn a_closed_pipe_ends_quietly() {
         "{}",
         String::from_utf8_lossy(&output.stderr)
     );
+}
+
+#[test]
+fn threads_option_gives_the_same_bytes_and_zero_means_every_core() {
+    let scene = std::fs::read(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/examples/quadrics_gallery.txt"
+    ))
+    .unwrap();
+    let one = run(&["--threads", "1", "160", "120"], &scene);
+    assert!(one.status.success());
+    assert_eq!(one.stdout.len(), "P6\n160 120\n255\n".len() + 160 * 120 * 3);
+    for threads in ["4", "0"] {
+        let many = run(&["--threads", threads, "160", "120"], &scene);
+        assert!(many.status.success());
+        assert!(many.stdout == one.stdout, "--threads {threads}");
+    }
 }

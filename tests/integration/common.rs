@@ -45,13 +45,8 @@ pub fn course_scenes() -> Option<PathBuf> {
 /// A reviewable picture of a scene for a snapshot: a 32x24 render as text P3, and the
 /// FNV-1a hash of the PPM at the default size, which locks the full image down.
 pub fn image_document(scene: &legacy_rt::Scene) -> String {
-    use legacy_rt::render::{DEFAULT_MAX_DIST, Options, render};
-    let options = |(width, height): (u64, u64)| Options {
-        width: width as usize,
-        height: height as usize,
-        max_dist: DEFAULT_MAX_DIST,
-        kernel: Default::default(),
-    };
+    use legacy_rt::render::{Options, render};
+    let options = |(width, height): (u64, u64)| Options::new(width as usize, height as usize);
     let (small, _) = render(scene, &options((32, 24)), |_| {});
     let mut text = String::from("P3\n32 24\n255\n");
     for row in small.pixels.chunks(small.width) {

@@ -2,7 +2,7 @@
 //! a light on the surface) never produce a NaN.
 
 use glam::DVec3;
-use legacy_rt::render::{DEFAULT_MAX_DIST, Options, ray_trace, render};
+use legacy_rt::render::{Options, ray_trace, render};
 use legacy_rt::shapes::Ray;
 
 const SCENE: &str = "8 6\n0 0 3\n\
@@ -27,12 +27,7 @@ fn ray(base: [f64; 3], dir: [f64; 3]) -> Ray {
 #[test]
 fn special_rays_give_finite_colours() {
     let scene = legacy_rt::load(SCENE).unwrap();
-    let options = Options {
-        width: 64,
-        height: 48,
-        max_dist: DEFAULT_MAX_DIST,
-        kernel: Default::default(),
-    };
+    let options = Options::new(64, 48);
     let rays = [
         // Along the cylinder's axis, inside it: a = b = 0.
         ray([0.0, 5.0, -5.0], [0.0, -1.0, 0.0]),

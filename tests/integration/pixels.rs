@@ -6,12 +6,7 @@ use legacy_rt::render::{self, Options};
 
 fn render_scene(text: &str, width: usize, height: usize) -> legacy_rt::Image {
     let scene = legacy_rt::load(text).unwrap_or_else(|e| panic!("{e}"));
-    let options = Options {
-        width,
-        height,
-        max_dist: render::DEFAULT_MAX_DIST,
-        kernel: Default::default(),
-    };
+    let options = Options::new(width, height);
     render::render(&scene, &options, |_| {}).0
 }
 

@@ -1,0 +1,310 @@
+//! A bounding volume hierarchy over the scene's bounded objects, so that the closest-hit
+//! and shadow tests of spec §4.3 and §4.6 visit a few boxes instead of every object.
+//!
+//! It changes which objects are *tested*, never the answer. Every object whose box the
+//! ray enters before the best hit so far is tested exactly as the linear scan tests it,
+//! and the best hit is chosen with the scan's rule: smallest t, and on an exact tie the
+//! earlier object. Unbounded objects (planes, tiled planes, `QUADRIC` records) have no
+//! box and are tested for every ray, as before.
+//!
+//! The tree is built once per render. Each split is at the median of the centroids
+//! along the longest axis; leaves hold at most [`LEAF_SIZE`] objects. The build is
+//! deterministic: ties in the median are broken by object index.
+
+use crate::scene::Scene;
+use crate::shapes::Ray;
+use glam::DVec3;
+
+/// Scenes with fewer bounded objects than this are scanned linearly: a tree costs more
+/// than it saves there (docs/performance.md).
+pub const MIN_OBJECTS: usize = 8;
+
+/// Most objects in a leaf.
+const LEAF_SIZE: usize = 1;
+
+/// An axis-aligned box.
+#[derive(Debug, Clone, Copy)]
+struct Aabb {
+    min: DVec3,
+    max: DVec3,
+}
+
+impl Aabb {
+    const EMPTY: Aabb = Aabb {
+        min: DVec3::splat(f64::INFINITY),
+        max: DVec3::splat(f64::NEG_INFINITY),
+    };
+
+    fn union(self, other: Aabb) -> Aabb {
+        Aabb {
+            min: self.min.min(other.min),
+            max: self.max.max(other.max),
+        }
+    }
+
+    /// Whether the ray enters the box at some t in [0, limit]. A zero direction
+    /// component gives ±inf or NaN slabs; `f64::min` and `max` drop the NaN, so a ray
+    /// lying in a face's plane counts as inside, which is safe (it only tests more).
+    #[inline]
+    fn entered(&self, base: DVec3, inverse: DVec3, limit: f64) -> bool {
+        let near = (self.min - base) * inverse;
+        let far = (self.max - base) * inverse;
+        let enter = near.min(far).max_element().max(0.0);
+        let leave = near.max(far).min_element();
+        enter <= leave && enter <= limit
+    }
+}
+
+/// A node: a box and either two children (`count == 0`: the left child follows this
+/// node, the right one is at `first`) or `count` objects at `order[first..]`.
+#[derive(Debug, Clone, Copy)]
+struct Node {
+    bounds: Aabb,
+    first: u32,
+    count: u32,
+    /// The axis the children were split on (0, 1, 2): a ray going up that axis visits
+    /// the left (lower) child first, so that the best hit shrinks the search early.
+    axis: u32,
+}
+
+/// The hierarchy: nodes, the bounded objects' indices in leaf order, and the indices of
+/// the objects that have no box.
+#[derive(Debug, Clone)]
+pub struct Bvh {
+    nodes: Vec<Node>,
+    order: Vec<u32>,
+    unbounded: Vec<u32>,
+}
+
+impl Bvh {
+    /// The tree for `scene`, or `None` when it has fewer than [`MIN_OBJECTS`] bounded
+    /// objects.
+    pub fn new(scene: &Scene) -> Option<Bvh> {
+        let mut items = Vec::new();
+        let mut unbounded = Vec::new();
+        for (index, object) in scene.objects.iter().enumerate() {
+            match object.shape.bounds() {
+                Some((min, max)) => items.push((index as u32, pad(Aabb { min, max }))),
+                None => unbounded.push(index as u32),
+            }
+        }
+        if items.len() < MIN_OBJECTS {
+            return None;
+        }
+        let mut bvh = Bvh {
+            nodes: Vec::with_capacity(2 * items.len() / LEAF_SIZE + 1),
+            order: Vec::with_capacity(items.len()),
+            unbounded,
+        };
+        bvh.build(&mut items);
+        Some(bvh)
+    }
+
+    /// Appends the subtree of `items` and returns its node's index.
+    fn build(&mut self, items: &mut [(u32, Aabb)]) -> usize {
+        let bounds = items
+            .iter()
+            .fold(Aabb::EMPTY, |b, (_, item)| b.union(*item));
+        let at = self.nodes.len();
+        self.nodes.push(Node {
+            bounds,
+            first: self.order.len() as u32,
+            count: items.len() as u32,
+            axis: 0,
+        });
+        if items.len() <= LEAF_SIZE {
+            self.order.extend(items.iter().map(|(index, _)| index));
+            return at;
+        }
+        let centre = |b: &Aabb| b.min + b.max;
+        let spread = items.iter().fold(Aabb::EMPTY, |b, (_, item)| {
+            let c = centre(item);
+            b.union(Aabb { min: c, max: c })
+        });
+        let extent = spread.max - spread.min;
+        let axis = if extent.x >= extent.y && extent.x >= extent.z {
+            0
+        } else if extent.y >= extent.z {
+            1
+        } else {
+            2
+        };
+        let middle = match sah_split(items, axis, spread.min[axis], extent[axis]) {
+            Some(middle) => middle,
+            None => {
+                let middle = items.len() / 2;
+                items.select_nth_unstable_by(middle, |(i, a), (j, b)| {
+                    centre(a)[axis].total_cmp(&centre(b)[axis]).then(i.cmp(j))
+                });
+                middle
+            }
+        };
+        let (left, right) = items.split_at_mut(middle);
+        self.build(left);
+        let right_at = self.build(right);
+        self.nodes[at].first = right_at as u32;
+        self.nodes[at].count = 0;
+        self.nodes[at].axis = axis as u32;
+        at
+    }
+
+    /// The closest hit (smallest t, ties to the lower index) among the objects for which
+    /// `test` gives a distance; `test` applies the caller's filters (t > 0, the skipped
+    /// object).
+    #[inline]
+    pub fn closest(&self, ray: &Ray, test: impl Fn(usize) -> Option<f64>) -> Option<(usize, f64)> {
+        let mut best: Option<(usize, f64)> = None;
+        let consider = |best: &mut Option<(usize, f64)>, index: u32| {
+            let index = index as usize;
+            if let Some(t) = test(index)
+                && best.is_none_or(|(i, b)| t < b || (t == b && index < i))
+            {
+                *best = Some((index, t));
+            }
+        };
+        for &index in &self.unbounded {
+            consider(&mut best, index);
+        }
+        let inverse = ray.dir.recip();
+        let mut stack = Stack::new();
+        while let Some(at) = stack.pop() {
+            let node = self.nodes[at];
+            let limit = best.map_or(f64::INFINITY, |(_, t)| t);
+            if !node.bounds.entered(ray.base, inverse, limit) {
+                continue;
+            }
+            if node.count > 0 {
+                let first = node.first as usize;
+                for &index in &self.order[first..first + node.count as usize] {
+                    consider(&mut best, index);
+                }
+            } else if ray.dir[node.axis as usize] < 0.0 {
+                stack.push(at + 1);
+                stack.push(node.first as usize);
+            } else {
+                stack.push(node.first as usize);
+                stack.push(at + 1);
+            }
+        }
+        best
+    }
+
+    /// Whether `test` finds any object hit before `limit`.
+    #[inline]
+    pub fn any(&self, ray: &Ray, limit: f64, test: impl Fn(usize) -> bool) -> bool {
+        if self.unbounded.iter().any(|&index| test(index as usize)) {
+            return true;
+        }
+        let inverse = ray.dir.recip();
+        let mut stack = Stack::new();
+        while let Some(at) = stack.pop() {
+            let node = self.nodes[at];
+            if !node.bounds.entered(ray.base, inverse, limit) {
+                continue;
+            }
+            if node.count > 0 {
+                let first = node.first as usize;
+                let leaf = &self.order[first..first + node.count as usize];
+                if leaf.iter().any(|&index| test(index as usize)) {
+                    return true;
+                }
+            } else {
+                stack.push(node.first as usize);
+                stack.push(at + 1);
+            }
+        }
+        false
+    }
+}
+
+/// Bins of the surface area heuristic.
+const BINS: usize = 16;
+
+/// Sorts `items` into two groups along `axis` by the binned surface area heuristic (the
+/// split that minimises each side's box area times its object count) and returns the
+/// size of the first group; `None` if every centroid falls in one bin. Centroids are
+/// `min + max` (twice the centre), spread over `[low, low + extent]`.
+fn sah_split(items: &mut [(u32, Aabb)], axis: usize, low: f64, extent: f64) -> Option<usize> {
+    if extent <= 0.0 || !extent.is_finite() {
+        return None;
+    }
+    let bin = |b: &Aabb| {
+        let c = (b.min + b.max)[axis];
+        (((c - low) / extent * BINS as f64) as usize).min(BINS - 1)
+    };
+    let mut counts = [0usize; BINS];
+    let mut boxes = [Aabb::EMPTY; BINS];
+    for (_, b) in items.iter() {
+        let k = bin(b);
+        counts[k] += 1;
+        boxes[k] = boxes[k].union(*b);
+    }
+    let area = |b: Aabb| {
+        let d = (b.max - b.min).max(DVec3::ZERO);
+        d.x * d.y + d.y * d.z + d.z * d.x
+    };
+    // Sweep from the right for the right-hand sides, then from the left.
+    let mut right = [(0usize, Aabb::EMPTY); BINS];
+    let mut acc = (0, Aabb::EMPTY);
+    for k in (1..BINS).rev() {
+        acc = (acc.0 + counts[k], acc.1.union(boxes[k]));
+        right[k] = acc;
+    }
+    let mut left = (0, Aabb::EMPTY);
+    let mut best: Option<(f64, usize)> = None;
+    for k in 1..BINS {
+        left = (left.0 + counts[k - 1], left.1.union(boxes[k - 1]));
+        let (n_right, box_right) = right[k];
+        if left.0 == 0 || n_right == 0 {
+            continue;
+        }
+        let cost = area(left.1) * left.0 as f64 + area(box_right) * n_right as f64;
+        if best.is_none_or(|(c, _)| cost < c) {
+            best = Some((cost, k));
+        }
+    }
+    let (_, split) = best?;
+    items.sort_unstable_by_key(|(index, b)| (bin(b) >= split, *index));
+    Some(counts[..split].iter().sum())
+}
+
+/// The nodes still to visit, starting with the root. A median split halves the objects
+/// at each level, so 64 entries cover far more objects than memory holds.
+struct Stack {
+    nodes: [u32; 64],
+    len: usize,
+}
+
+impl Stack {
+    #[inline]
+    fn new() -> Stack {
+        Stack {
+            nodes: [0; 64],
+            len: 1,
+        }
+    }
+
+    #[inline]
+    fn push(&mut self, node: usize) {
+        self.nodes[self.len] = node as u32;
+        self.len += 1;
+    }
+
+    #[inline]
+    fn pop(&mut self) -> Option<usize> {
+        self.len = self.len.checked_sub(1)?;
+        Some(self.nodes[self.len] as usize)
+    }
+}
+
+/// Grows a box by a few parts in 10^9 of its size: the hit tests accept points a few
+/// ulps outside a shape's bounds (the slack of the accurate kernel), and such a point
+/// must still lie inside the box.
+fn pad(b: Aabb) -> Aabb {
+    let size = (b.max - b.min).max_element() + b.min.abs().max(b.max.abs()).max_element();
+    let margin = DVec3::splat(1e-9 * size + f64::MIN_POSITIVE);
+    Aabb {
+        min: b.min - margin,
+        max: b.max + margin,
+    }
+}

@@ -1,0 +1,79 @@
+//! What the speed work of issue 6 must not change: the image. Threads and the bounding
+//! volume hierarchy change only the order and number of tests, never a pixel.
+
+#[path = "../support/generated.rs"]
+mod generated;
+
+use crate::common::{course_scenes, scene_files};
+use legacy_rt::render::{Options, render};
+use std::path::Path;
+
+/// The PPM bytes of `scene` rendered with `options`.
+fn bytes(scene: &legacy_rt::Scene, options: &Options) -> Vec<u8> {
+    legacy_rt::image_output::ppm(&render(scene, options, |_| {}).0)
+}
+
+/// Every example scene, every course scene and the generated family at 10 and 300
+/// objects.
+fn scenes() -> Vec<(String, legacy_rt::Scene)> {
+    let mut files = scene_files(&Path::new(env!("CARGO_MANIFEST_DIR")).join("examples"));
+    if let Some(dir) = course_scenes() {
+        files.extend(scene_files(&dir));
+    }
+    let mut scenes: Vec<(String, legacy_rt::Scene)> = files
+        .iter()
+        .filter_map(|path| {
+            let text = std::fs::read_to_string(path).ok()?;
+            Some((path.display().to_string(), legacy_rt::load(&text).ok()?))
+        })
+        .collect();
+    for count in [10, 300] {
+        let scene = legacy_rt::load(&generated::many_objects(count)).unwrap();
+        scenes.push((format!("generated {count}"), scene));
+    }
+    assert!(scenes.len() > 20, "{} scenes", scenes.len());
+    scenes
+}
+
+#[test]
+fn threads_1_and_4_give_identical_bytes() {
+    for (name, scene) in scenes() {
+        let one = Options {
+            threads: 1,
+            ..Options::new(96, 72)
+        };
+        let four = Options { threads: 4, ..one };
+        assert!(bytes(&scene, &one) == bytes(&scene, &four), "{name}");
+    }
+}
+
+#[test]
+fn the_bvh_gives_the_linear_scan_s_image() {
+    let mut accelerated = 0;
+    for (name, scene) in scenes() {
+        let linear = Options {
+            accelerate: false,
+            ..Options::new(96, 72)
+        };
+        let bvh = Options {
+            accelerate: true,
+            ..linear
+        };
+        accelerated += usize::from(legacy_rt::render::Bvh::new(&scene).is_some());
+        assert!(bytes(&scene, &linear) == bytes(&scene, &bvh), "{name}");
+    }
+    // The comparison means something only where a tree is built.
+    assert!(accelerated >= 2, "{accelerated} scenes with a BVH");
+}
+
+#[test]
+fn the_generated_family_has_the_requested_objects_in_view() {
+    for count in [10, 100] {
+        let scene = legacy_rt::load(&generated::many_objects(count)).unwrap();
+        assert_eq!(scene.objects.len(), count + 1); // and the floor
+        let image = render(&scene, &Options::new(160, 120), |_| {}).0;
+        // Every object kind's colour shows: the objects are in view.
+        let lit = image.pixels.iter().filter(|p| **p != [0, 0, 0]).count();
+        assert!(lit > image.pixels.len() / 2, "{lit} lit pixels");
+    }
+}
