@@ -10,6 +10,8 @@
 //! the speed-up of `--threads 2` and the peak memory (the resident high-water mark of a
 //! child process) of a 4096x4096 render and of the 10 000-object scene. It prints the
 //! tables and writes docs/performance.md with the chart docs/performance.svg.
+//!
+//! `scaling --scene N` prints the generated scene with N objects instead.
 
 #[path = "../tests/support/generated.rs"]
 mod generated;
@@ -70,9 +72,17 @@ fn peak_of(objects: usize, width: usize, height: usize) -> Result<f64, Box<dyn s
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
-    if args.get(1).map(String::as_str) == Some("--peak") {
-        child(args[2].parse()?, args[3].parse()?, args[4].parse()?);
-        return Ok(());
+    match args.get(1).map(String::as_str) {
+        Some("--peak") => {
+            child(args[2].parse()?, args[3].parse()?, args[4].parse()?);
+            return Ok(());
+        }
+        // The scene text itself, for bench/compare.sh.
+        Some("--scene") => {
+            print!("{}", generated::many_objects(args[2].parse()?));
+            return Ok(());
+        }
+        _ => {}
     }
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
     let mut md = String::new();
@@ -160,7 +170,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     writeln!(
         md,
         "\nChart: `performance.svg`, render time against object count, both axes \
-         logarithmic."
+         logarithmic. The comparison with POV-Ray 3.7 on three scenes is \
+         `bench/compare.sh`."
     )?;
     std::fs::write(root.join("docs/performance.md"), md)?;
     chart(&points, &root.join("docs/performance.svg"))?;
