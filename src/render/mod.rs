@@ -8,7 +8,7 @@
 mod bvh;
 mod shading;
 
-pub use bvh::{Bvh, MIN_OBJECTS as BVH_MIN_OBJECTS};
+pub use bvh::Bvh;
 pub use shading::{Screen, material_at};
 
 use crate::scene::{Light, Scene};
