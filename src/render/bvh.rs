@@ -77,7 +77,7 @@ pub struct Bvh {
 }
 
 impl Bvh {
-    /// The tree for `scene`, or `None` when it has fewer than [`MIN_OBJECTS`] bounded
+    /// The tree for `scene`, or `None` when it has fewer than `MIN_OBJECTS` (8) bounded
     /// objects.
     pub fn new(scene: &Scene) -> Option<Bvh> {
         let mut items = Vec::new();
