@@ -154,47 +154,36 @@ impl Bvh {
     #[inline]
     pub fn closest(&self, ray: &Ray, test: impl Fn(usize) -> Option<f64>) -> Option<(usize, f64)> {
         let mut best: Option<(usize, f64)> = None;
-        let consider = |best: &mut Option<(usize, f64)>, index: u32| {
-            let index = index as usize;
-            if let Some(t) = test(index)
-                && best.is_none_or(|(i, b)| t < b || (t == b && index < i))
-            {
-                *best = Some((index, t));
-            }
-        };
-        for &index in &self.unbounded {
-            consider(&mut best, index);
-        }
-        let inverse = ray.dir.recip();
-        let mut stack = Stack::new();
-        while let Some(at) = stack.pop() {
-            let node = self.nodes[at];
-            let limit = best.map_or(f64::INFINITY, |(_, t)| t);
-            if !node.bounds.entered(ray.base, inverse, limit) {
-                continue;
-            }
-            if node.count > 0 {
-                let first = node.first as usize;
-                for &index in &self.order[first..first + node.count as usize] {
-                    consider(&mut best, index);
+        self.walk(ray, |objects| {
+            for &index in objects {
+                let index = index as usize;
+                if let Some(t) = test(index)
+                    && best.is_none_or(|(i, b)| t < b || (t == b && index < i))
+                {
+                    best = Some((index, t));
                 }
-            } else if ray.dir[node.axis as usize] < 0.0 {
-                stack.push(at + 1);
-                stack.push(node.first as usize);
-            } else {
-                stack.push(node.first as usize);
-                stack.push(at + 1);
             }
-        }
+            Some(best.map_or(f64::INFINITY, |(_, t)| t))
+        });
         best
     }
 
     /// Whether `test` finds any object hit before `limit`.
     #[inline]
     pub fn any(&self, ray: &Ray, limit: f64, test: impl Fn(usize) -> bool) -> bool {
-        if self.unbounded.iter().any(|&index| test(index as usize)) {
+        self.walk(ray, |objects| {
+            (!objects.iter().any(|&index| test(index as usize))).then_some(limit)
+        })
+    }
+
+    /// Hands `visit` the unbounded objects, then the objects of every leaf whose box the
+    /// ray enters before the limit `visit` last returned, nearer child first. `visit` returns the new
+    /// limit, or `None` to stop; `walk` returns whether it was stopped.
+    #[inline]
+    fn walk(&self, ray: &Ray, mut visit: impl FnMut(&[u32]) -> Option<f64>) -> bool {
+        let Some(mut limit) = visit(&self.unbounded) else {
             return true;
-        }
+        };
         let inverse = ray.dir.recip();
         let mut stack = Stack::new();
         while let Some(at) = stack.pop() {
@@ -204,10 +193,13 @@ impl Bvh {
             }
             if node.count > 0 {
                 let first = node.first as usize;
-                let leaf = &self.order[first..first + node.count as usize];
-                if leaf.iter().any(|&index| test(index as usize)) {
-                    return true;
+                match visit(&self.order[first..first + node.count as usize]) {
+                    Some(new) => limit = new,
+                    None => return true,
                 }
+            } else if ray.dir[node.axis as usize] < 0.0 {
+                stack.push(at + 1);
+                stack.push(node.first as usize);
             } else {
                 stack.push(node.first as usize);
                 stack.push(at + 1);
