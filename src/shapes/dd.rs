@@ -114,6 +114,71 @@ impl Mul<Dd> for f64 {
     }
 }
 
+/// c u v for pairs u and v, as an unnormalised pair: c (u.hi v.hi) exactly by two
+/// two-products, the cross terms c (u.hi v.lo + u.lo v.hi) in lo.
+#[inline(always)]
+pub fn scaled_product(c: f64, u: Dd, v: Dd) -> Dd {
+    let p = two_prod(u.hi, v.hi);
+    let q = two_prod(c, p.hi);
+    Dd {
+        hi: q.hi,
+        lo: q.lo + c * (p.lo + (u.hi * v.lo + u.lo * v.hi)),
+    }
+}
+
+/// c u for a pair u, as an unnormalised pair.
+#[inline(always)]
+pub fn scaled(c: f64, u: Dd) -> Dd {
+    let q = two_prod(c, u.hi);
+    Dd {
+        hi: q.hi,
+        lo: q.lo + c * u.lo,
+    }
+}
+
+/// The sum of N pairs, rounded once: the leading parts are added two by two as a tree
+/// (each addition by two-sum, its error kept), then all the errors and low parts, also as
+/// a tree. As accurate as [`Compensated`] (Sum2) on the same terms, but a chain of
+/// log2(N) additions instead of N, which matters where the caller waits on the sum.
+#[inline(always)]
+pub fn sum_terms<const N: usize>(terms: [Dd; N]) -> f64 {
+    let mut leading = terms.map(|term| term.hi);
+    let mut errors = [0.0; N];
+    let mut count = N;
+    let mut found = 0;
+    while count > 1 {
+        let half = count / 2;
+        for i in 0..half {
+            let sum = two_sum(leading[2 * i], leading[2 * i + 1]);
+            leading[i] = sum.hi;
+            errors[found] = sum.lo;
+            found += 1;
+        }
+        if count % 2 == 1 {
+            leading[half] = leading[count - 1];
+        }
+        count -= half;
+    }
+    leading[0] + (plain_sum(terms.map(|term| term.lo)) + plain_sum(errors))
+}
+
+/// An f64 sum of N numbers, added two by two as a tree.
+#[inline(always)]
+fn plain_sum<const N: usize>(mut values: [f64; N]) -> f64 {
+    let mut count = N;
+    while count > 1 {
+        let half = count / 2;
+        for i in 0..half {
+            values[i] = values[2 * i] + values[2 * i + 1];
+        }
+        if count % 2 == 1 {
+            values[half] = values[count - 1];
+        }
+        count -= half;
+    }
+    if N == 0 { 0.0 } else { values[0] }
+}
+
 /// A running f64 sum whose rounding errors are gathered apart (the Sum2 and Dot2
 /// algorithms of Ogita, Rump and Oishi): the result is as accurate as if it had been
 /// summed in twice the precision and then rounded, for a fraction of double-double's cost.
@@ -154,21 +219,6 @@ impl Compensated {
         }
     }
 
-    /// Adds c u v for pairs u and v: c (u.hi v.hi) with its rounding errors, and the
-    /// cross terms c (u.hi v.lo + u.lo v.hi) as a correction.
-    #[inline(always)]
-    pub fn add_pair_product(self, c: f64, u: Dd, v: Dd) -> Compensated {
-        let p = two_prod(u.hi, v.hi);
-        self.add_product(c, p.hi)
-            .add_small(c * (p.lo + (u.hi * v.lo + u.lo * v.hi)))
-    }
-
-    /// Adds c u for a pair u.
-    #[inline(always)]
-    pub fn add_pair(self, c: f64, u: Dd) -> Compensated {
-        self.add_product(c, u.hi).add_small(c * u.lo)
-    }
-
     /// Adds a term small enough that its own rounding does not matter (a correction).
     #[inline(always)]
     pub fn add_small(self, x: f64) -> Compensated {
@@ -178,10 +228,14 @@ impl Compensated {
         }
     }
 
-    /// The sum as a normalised pair.
+    /// The sum as its running f64 sum and gathered error, not normalised: |lo| may
+    /// exceed half an ulp of hi, which is enough for a factor of an exact product.
     #[inline(always)]
-    pub fn pair(self) -> Dd {
-        two_sum(self.sum, self.error)
+    pub fn parts(self) -> Dd {
+        Dd {
+            hi: self.sum,
+            lo: self.error,
+        }
     }
 
     /// The sum rounded to f64.
@@ -229,5 +283,26 @@ mod tests {
         let x = 1e8 + 1.0;
         let sum = Compensated::new(-1e16).add_product(x, x).plus(-2e8);
         assert_eq!(sum.value(), 1.0);
+    }
+
+    #[test]
+    fn sum_terms_keeps_what_cancels() {
+        // The same sums as above, added as a tree.
+        let terms = [1e16, 1.0, 1.0, -1e16].map(Dd::new);
+        assert_eq!(sum_terms(terms), 2.0);
+        let x = 1e8 + 1.0;
+        assert_eq!(
+            sum_terms([two_prod(x, x), Dd::new(-1e16), Dd::new(-2e8)]),
+            1.0
+        );
+        // 3 (1e8 + 2^-30)² - 3e16 = 6e8 2^-30 + 3 2^-60: the first term comes from the
+        // cross terms alone (in f64, 1e8 + 2^-30 is 1e8 and the difference is 0); the
+        // second, lo², is below the precision and left out.
+        let u = two_sum(1e8, 2f64.powi(-30));
+        let sum = sum_terms([scaled_product(3.0, u, u), Dd::new(-3e16)]);
+        assert!(
+            (sum - 6e8 * 2f64.powi(-30)).abs() <= 2f64.powi(-58),
+            "{sum}"
+        );
     }
 }

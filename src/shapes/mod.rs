@@ -29,7 +29,7 @@ pub use hyperboloid::Hyperboloid;
 pub use paraboloid::Paraboloid;
 pub use plane::Plane;
 pub use plane_frame::PlaneFrame;
-pub use quadratic::{Roots, solve_quadratic};
+pub use quadratic::{Roots, solve_quadratic, solve_quadratic_with_slope};
 pub use quadric::{Centred, Quadric};
 pub use sphere::Sphere;
 

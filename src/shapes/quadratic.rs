@@ -13,6 +13,14 @@ pub type Roots = Option<[f64; 2]>;
 /// root; a = 0 the single root of b t + c = 0 (or `None` when b = 0 too).
 #[inline]
 pub fn solve_quadratic(a: f64, b: f64, c: f64) -> Roots {
+    solve_quadratic_with_slope(a, b, c).map(|(roots, _)| roots)
+}
+
+/// [`solve_quadratic`], and the size of the slope |2 a t + b| at either root, which is
+/// sqrt(b² - 4ac) at both (|b| for the linear equation): what the accurate kernel divides
+/// a root's error by.
+#[inline(always)]
+pub fn solve_quadratic_with_slope(a: f64, b: f64, c: f64) -> Option<([f64; 2], f64)> {
     if a == 0.0 {
         // Linear: a ray parallel to a cylinder's axis, along a cone's generator, or along
         // a paraboloid's axis (spec §5.6).
@@ -20,17 +28,18 @@ pub fn solve_quadratic(a: f64, b: f64, c: f64) -> Roots {
             return None;
         }
         let t = -c / b;
-        return Some([t, t]);
+        return Some(([t, t], b.abs()));
     }
     let discriminant = b * b - 4.0 * a * c;
     if discriminant < 0.0 || discriminant.is_nan() {
         return None;
     }
-    let q = -0.5 * (b + discriminant.sqrt().copysign(b));
+    let root = discriminant.sqrt();
+    let q = -0.5 * (b + root.copysign(b));
     let far = q / a;
     // q = 0 only when b = 0 and the discriminant is 0, i.e. c = 0: a double root at 0.
     let near = if q == 0.0 { 0.0 } else { c / q };
-    Some(if far < near { [far, near] } else { [near, far] })
+    Some((if far < near { [far, near] } else { [near, far] }, root))
 }
 
 #[cfg(test)]

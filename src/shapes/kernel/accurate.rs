@@ -18,9 +18,12 @@
 //!    estimate is large. A root out of bounds by more than twice its estimate is dropped
 //!    as it is.
 //! 3. Only then refine: evaluate f at the root from the world-space numbers
-//!    (B - C + t D, then `rotmat`) with every rounding error kept ([`Compensated`]), and
-//!    solve the quadratic shifted to the root, a σ² + f'(t) σ + f(t) = 0, for the
-//!    correction σ. Its a and f'(t) need only a few correct digits, f(t) needs them all.
+//!    (B - C + t D, then `rotmat`) with every rounding error kept ([`residual`],
+//!    [`sum_terms`]), and solve the quadratic shifted to the root,
+//!    a σ² + f'(t) σ + f(t) = 0, for the correction σ ([`correction`]: usually Newton's
+//!    step with one curvature term). Its a and f'(t) need only a few correct digits, f(t)
+//!    needs them all. A sphere seen from just outside is solved from the base instead
+//!    ([`just_outside`]).
 //!
 //! The general `QUADRIC` takes the same steps about its centre
 //! ([`Centred`](crate::shapes::Centred)); a plane's dot products are recomputed with
@@ -29,8 +32,11 @@
 //! bound does not flip from pixel to pixel on the rounding of t and of the ray.
 
 use super::Kernel;
-use crate::shapes::dd::{Compensated, Dd, two_prod, two_sum};
-use crate::shapes::{AxisFrame, AxisQuadric, Plane, Quadric, Ray, RootRule, solve_quadratic};
+use crate::shapes::dd::{Compensated, Dd, scaled, scaled_product, sum_terms, two_prod, two_sum};
+use crate::shapes::{
+    AxisFrame, AxisQuadric, Plane, Quadric, Ray, RootRule, solve_quadratic,
+    solve_quadratic_with_slope,
+};
 use glam::DVec3;
 
 /// The shipped kernel.
@@ -46,6 +52,10 @@ const REFINE_ABOVE_ULPS: f64 = 8.0;
 const MAX_STEPS: usize = 3;
 
 const EPS: f64 = f64::EPSILON;
+
+/// The largest |a σ / slope| at which a refinement step takes Newton's correction
+/// ([`correction`]): 2⁻³⁰, so that its error 2ρ² |σ| stays below 2⁻⁵⁹ |σ|.
+const NEWTON_BEND: f64 = 1.0 / (1u64 << 30) as f64;
 
 /// How far past a bound (the plane's z = 0, a quadric's y = 0 or h) a hit still counts:
 /// 8 ulps of the size of the terms that computed the coordinate. A point that the scene
@@ -156,7 +166,13 @@ fma_dispatch!(
 fma_dispatch!(
     /// [`refine_axis_any`], kept out of line so that the common path stays small.
     fn refine_axis => refine_axis_any(
-        quadric: &AxisQuadric, ray: &Ray, dir: DVec3, a: f64, t0: f64, index: usize
+        quadric: &AxisQuadric,
+        ray: &Ray,
+        start: &Recentred,
+        dir: DVec3,
+        a: f64,
+        t0: f64,
+        index: usize
     ) -> (f64, f64)
 );
 fma_dispatch!(
@@ -171,9 +187,12 @@ fma_dispatch!(
 );
 
 /// Step 1's result for a ray and a centre C.
+#[derive(Clone, Copy)]
 struct Recentred {
     /// B - C, rounded.
     offset: DVec3,
+    /// The rounding error of `offset`: B - C = offset + offset_error exactly.
+    offset_error: DVec3,
     /// s0 = -(B - C)·D.
     shift: f64,
     /// B'' - C = (B - C) + s0 D, to an ulp of its own size.
@@ -195,6 +214,7 @@ fn recentre(ray: &Ray, centre: DVec3) -> Recentred {
     ) + offset_error;
     Recentred {
         offset,
+        offset_error,
         shift,
         near,
     }
@@ -204,54 +224,52 @@ fn recentre(ray: &Ray, centre: DVec3) -> Recentred {
 #[inline(always)]
 fn axis_hit_any(quadric: &AxisQuadric, ray: &Ray) -> Option<f64> {
     let frame = &quadric.frame;
+    let start = recentre(ray, frame.centre);
     let Recentred {
         offset,
+        offset_error,
         shift,
         near: near_world,
-    } = recentre(ray, frame.centre);
+    } = start;
     let near = frame.rotate(near_world);
     let dir = frame.rotate(ray.dir);
     let (a, b, c) = quadric.coefficients(near, dir);
-    // Step 2. The terms of f and of its gradient at the root bound the rounding of
-    // c, b, a, of B'' and of rotmat; each moves the root by its size over |f'(s)|.
-    let square = quadric.square.abs();
-    let linear = quadric.linear_y.abs();
-    let constant = quadric.constant.abs();
-    let estimate = |s: f64| {
-        let reach = near.abs() + (s * dir).abs();
-        let value_size = square.dot(reach * reach) + linear * reach.y + constant;
-        let gradient_size = 2.0 * square.dot(reach) + linear;
-        RootError {
-            spread: 2.0 * value_size + gradient_size * reach.max_element(),
-            slope: (2.0 * a * s + b).abs(),
-        }
-    };
+    let spread = Spread::new(quadric, near, dir);
     let RootRule::FirstPositiveWithin { low, high } = quadric.rule else {
         // The sphere: the nearer root, which needs one division, not two.
-        let s = nearer_root(a, b, c)?;
+        let (s, slope) = nearer_root(a, b, c)?;
         let t = shift + s;
-        let t = if estimate(s).needs_refining(t) {
-            refine_axis(quadric, ray, dir, a, t, 0).0
+        let error = RootError {
+            spread: spread.at(s),
+            slope,
+        };
+        let t = if error.needs_refining(t) {
+            // From just outside, heading in, the base gives the root directly.
+            just_outside(quadric, ray, offset, offset_error, a)
+                .unwrap_or_else(|| refine_axis(quadric, ray, &start, dir, a, t, 0).0)
         } else {
             t
         };
         return t.is_finite().then_some(t);
     };
-    let roots = solve_quadratic(a, b, c)?;
+    let (roots, slope) = solve_quadratic_with_slope(a, b, c)?;
     let moved = offset.abs().max_element() + shift.abs();
     for (index, s) in roots.into_iter().enumerate() {
         let t = shift + s;
-        let error = estimate(s);
+        let error = RootError {
+            spread: spread.at(s),
+            slope,
+        };
         let y = near.y + s * dir.y;
         // A root out of bounds (or behind the base) by more than twice its estimated
         // error stays out after refining: skip it unrefined.
         let slack = slack(moved + t.abs());
-        let beyond = |distance| error.clearly_beyond(distance, t, slack);
-        if beyond(-t) || beyond(low - y) || beyond(y - high) {
+        let outside = (-t).max(low - y).max(y - high);
+        if outside > 0.0 && error.clearly_beyond(outside, t, slack) {
             continue;
         }
         let (t, y) = if error.needs_refining(t) {
-            refine_axis(quadric, ray, dir, a, t, index)
+            refine_axis(quadric, ray, &start, dir, a, t, index)
         } else {
             (t, y)
         };
@@ -262,19 +280,106 @@ fn axis_hit_any(quadric: &AxisQuadric, ray: &Ray) -> Option<f64> {
     None
 }
 
-/// The smaller root of a s² + b s + c = 0 for a > 0 when the discriminant is positive
-/// (a tangent ray misses the sphere, spec §5.2): q / a or c / q of the stable formula,
-/// whichever is smaller, chosen by the signs.
+/// The sphere seen from just outside it, heading in: when f(B) = c0 is small beside
+/// |B - C|², the hit is near the base and B'' lies far from it, so t = s0 + s cancels.
+/// There the root is taken from the base instead, c0 / q of the stable formula with
+/// c0 = |B - C|² - r² to the last bit (B - C exact, squares by two-prod) and
+/// b0 = 2 (B - C)·D, which does not cancel for a ray that heads in. `None` unless the
+/// discriminant b0² - 4 a c0 keeps more than three quarters of b0² (so that its square
+/// root loses no digits) and the other conditions hold; the caller then takes the
+/// recentred path.
 #[inline(always)]
-fn nearer_root(a: f64, b: f64, c: f64) -> Option<f64> {
+fn just_outside(
+    quadric: &AxisQuadric,
+    ray: &Ray,
+    offset: DVec3,
+    offset_error: DVec3,
+    a: f64,
+) -> Option<f64> {
+    let distance_sq = offset.length_squared();
+    let rough = distance_sq + quadric.constant;
+    if !(rough > 0.0 && rough < 0.125 * distance_sq) {
+        return None;
+    }
+    let heading = offset.dot(ray.dir);
+    // A NaN heading fails the discriminant's test below.
+    if heading >= 0.0 {
+        return None;
+    }
+    let square = |u: f64, e: f64| {
+        let p = two_prod(u, u);
+        Dd {
+            hi: p.hi,
+            lo: p.lo + 2.0 * u * e,
+        }
+    };
+    let c0 = sum_terms([
+        square(offset.x, offset_error.x),
+        square(offset.y, offset_error.y),
+        square(offset.z, offset_error.z),
+        Dd::new(quadric.constant),
+    ]);
+    let b0 = 2.0 * (heading + offset_error.dot(ray.dir));
+    let discriminant = b0 * b0 - 4.0 * a * c0;
+    if !(c0 > 0.0 && discriminant > 0.75 * b0 * b0) {
+        return None;
+    }
+    let q = 0.5 * (discriminant.sqrt() - b0);
+    Some(c0 / q)
+}
+
+/// Step 2's bound on the terms of f and of its gradient along the recentred local ray
+/// near + s dir: with reachᵢ = |nearᵢ| + |s| |dirᵢ| (no coordinate of the point between
+/// the base and the root exceeds it), the terms of f sum to at most
+/// Σ |αᵢ| reachᵢ² + |β| reach_y + |γ| and those of ∇f to at most 2 Σ |αᵢ| reachᵢ + |β|.
+/// The rounding of c, b and a perturbs f by EPS times the first; that of B'', which may
+/// lie along any axis after `rotmat`, by EPS times the second times the largest reachᵢ.
+/// The absolute values are taken once per ray.
+struct Spread {
+    near: DVec3,
+    dir: DVec3,
+    square: DVec3,
+    linear: f64,
+    constant: f64,
+}
+
+impl Spread {
+    #[inline(always)]
+    fn new(quadric: &AxisQuadric, near: DVec3, dir: DVec3) -> Spread {
+        Spread {
+            near: near.abs(),
+            dir: dir.abs(),
+            square: quadric.square.abs(),
+            linear: quadric.linear_y.abs(),
+            constant: quadric.constant.abs(),
+        }
+    }
+
+    /// The `spread` of [`RootError`] at the root s.
+    #[inline(always)]
+    fn at(&self, s: f64) -> f64 {
+        let reach = s.abs() * self.dir + self.near;
+        let weighted = self.square * reach;
+        let value_size = weighted.dot(reach) + self.linear * reach.y + self.constant;
+        let gradient_size = 2.0 * weighted.element_sum() + self.linear;
+        2.0 * value_size + gradient_size * reach.max_element()
+    }
+}
+
+/// The smaller root of a s² + b s + c = 0 for a > 0 when the discriminant is positive
+/// (a tangent ray misses the sphere, spec §5.2), and the slope sqrt(b² - 4ac) there:
+/// q / a or c / q of the stable formula, whichever is smaller, chosen by the signs.
+#[inline(always)]
+fn nearer_root(a: f64, b: f64, c: f64) -> Option<(f64, f64)> {
     let discriminant = b * b - 4.0 * a * c;
     if !(discriminant > 0.0 && a > 0.0) {
         return None;
     }
-    let q = -0.5 * (b + discriminant.sqrt().copysign(b));
+    let root = discriminant.sqrt();
+    let q = -0.5 * (b + root.copysign(b));
     // b's sign bit decides (b = -0.0 from a ray through the centre counts as negative):
     // set, q >= 0 and c / q is the more negative root; clear, q < 0 and q / a is.
-    Some(if b.is_sign_negative() { c / q } else { q / a })
+    Some((if b.is_sign_negative() { c / q } else { q / a }, root))
 }
 
 /// The smallest positive root of a general quadric: the same three steps as
@@ -326,28 +431,40 @@ fn sum_error(a: DVec3, b: DVec3, sum: DVec3) -> DVec3 {
     (a - a_virtual) + (b - b_virtual)
 }
 
-/// The plane's t with both dot products in double-double; `None` if N·D is zero.
+/// The plane's t with both dot products to within an ulp; `None` if N·D is zero.
 #[inline(always)]
 fn plane_dd_any(plane: &Plane, ray: &Ray) -> Option<f64> {
-    let n = plane.normal;
-    let offset = plane.point - ray.base;
-    let offset_error = sum_error(plane.point, -ray.base, offset);
-    let numerator = Compensated::new(0.0)
-        .add_product(n.x, offset.x)
-        .add_product(n.y, offset.y)
-        .add_product(n.z, offset.z)
-        .add_small(n.dot(offset_error))
-        .value();
-    let denominator = Compensated::new(0.0)
-        .add_product(n.x, ray.dir.x)
-        .add_product(n.y, ray.dir.y)
-        .add_product(n.z, ray.dir.z)
-        .value();
+    let denominator = plane_denominator(plane.normal, ray.dir);
     if denominator == 0.0 {
         return None;
     }
     // Each dot product is now within an ulp of the exact one: t within 1.5 ulps.
-    Some(numerator / denominator)
+    Some(plane_numerator(plane, ray) / denominator)
+}
+
+/// The plane's N·(Q - B) to within an ulp, where its terms cancel: Q - B kept exactly
+/// (two-sum) and the products summed with their rounding errors.
+#[inline(always)]
+fn plane_numerator(plane: &Plane, ray: &Ray) -> f64 {
+    let n = plane.normal;
+    let offset = plane.point - ray.base;
+    let offset_error = sum_error(plane.point, -ray.base, offset);
+    Compensated::new(0.0)
+        .add_product(n.x, offset.x)
+        .add_product(n.y, offset.y)
+        .add_product(n.z, offset.z)
+        .add_small(n.dot(offset_error))
+        .value()
+}
+
+/// The plane's N·D to within an ulp, where its terms cancel (a grazing ray).
+#[inline(always)]
+fn plane_denominator(normal: DVec3, dir: DVec3) -> f64 {
+    Compensated::new(0.0)
+        .add_product(normal.x, dir.x)
+        .add_product(normal.y, dir.y)
+        .add_product(normal.z, dir.z)
+        .value()
 }
 
 /// The local point rotmat (B - C + t D) as hi + lo pairs, exact to about 2^-106 of its
@@ -379,16 +496,55 @@ fn local_point(
             .add_product(axis.y, world[1].hi)
             .add_product(axis.z, world[2].hi)
             .add_small(axis.x * world[0].lo + axis.y * world[1].lo + axis.z * world[2].lo)
-            .pair()
+            .parts()
     };
     let irot = &frame.irot;
     [row(irot.x_axis), row(irot.y_axis), row(irot.z_axis)]
 }
 
+/// f = Σ αᵢ Lᵢ² + β Ly + γ at the local point L given as hi + lo pairs, with every
+/// rounding error kept: each hi² exactly by two-prod, the cross term 2 hi lo as a
+/// correction (lo² is below the precision), the terms added by [`sum_terms`]. Every shape
+/// of the table has αx = αz = 1, whose products need no rounding.
+#[inline(always)]
+fn residual(quadric: &AxisQuadric, x: Dd, y: Dd, z: Dd) -> f64 {
+    let alpha = quadric.square;
+    let square = |u: Dd| {
+        let p = two_prod(u.hi, u.hi);
+        Dd {
+            hi: p.hi,
+            lo: p.lo + 2.0 * u.hi * u.lo,
+        }
+    };
+    let (mut xx, mut zz) = (square(x), square(z));
+    if alpha.x != 1.0 || alpha.z != 1.0 {
+        xx = scaled(alpha.x, xx);
+        zz = scaled(alpha.z, zz);
+    }
+    sum_terms([
+        xx,
+        zz,
+        scaled(alpha.y, square(y)),
+        scaled(quadric.linear_y, y),
+        Dd::new(quadric.constant),
+    ])
+}
+
 /// One step's correction: the root `index` (0 the smaller, 1 the larger) of
 /// a σ² + slope σ + value = 0, or the vertex -slope / 2a if rounding left no real root.
+///
+/// Usually the correction is tiny beside the distance to the other root, -slope / a, and
+/// Newton's σₙ = -value / slope, bent by the curvature, σₙ (1 - ρ) with ρ = a σₙ / slope,
+/// is that root to within 2ρ² |σ|: one division instead of a square root and two. Only
+/// when |ρ| > 2⁻³⁰ (two roots close together, a grazing ray) is the quadratic solved.
 #[inline(always)]
 fn correction(a: f64, slope: f64, value: f64, index: usize) -> f64 {
+    let inverse = 1.0 / slope;
+    let newton = -value * inverse;
+    let bend = a * newton * inverse;
+    if bend.abs() <= NEWTON_BEND {
+        return newton - newton * bend;
+    }
     match solve_quadratic(a, slope, value) {
         Some(roots) => roots[index],
         None if a != 0.0 => -slope / (2.0 * a),
@@ -401,32 +557,25 @@ fn correction(a: f64, slope: f64, value: f64, index: usize) -> f64 {
 fn refine_axis_any(
     quadric: &AxisQuadric,
     ray: &Ray,
+    start: &Recentred,
     dir: DVec3,
     a: f64,
     t0: f64,
     index: usize,
 ) -> (f64, f64) {
     let (mut t, mut y) = (t0, f64::NAN);
-    let offset = ray.base - quadric.frame.centre;
-    let offset_error = sum_error(ray.base, -quadric.frame.centre, offset);
+    let Recentred {
+        offset,
+        offset_error,
+        ..
+    } = *start;
     for _ in 0..MAX_STEPS {
         let [x, ly, z] = local_point(&quadric.frame, offset, offset_error, ray.dir, t);
-        // f = Σ αᵢ Lᵢ² + β Ly + γ with Lᵢ = hi + lo: hi² exactly by two-prod, the cross
-        // term 2 hi lo as a correction, lo² below the precision.
-        let sq = quadric.square;
-        let mut value = Compensated::new(quadric.constant)
-            .add_product(quadric.linear_y, ly.hi)
-            .add_small(quadric.linear_y * ly.lo);
-        for (alpha, coordinate) in [(sq.x, x), (sq.y, ly), (sq.z, z)] {
-            let square = two_prod(coordinate.hi, coordinate.hi);
-            value = value
-                .add_product(alpha, square.hi)
-                .add_small(alpha * (square.lo + 2.0 * coordinate.hi * coordinate.lo));
-        }
+        let value = residual(quadric, x, ly, z);
         let point = DVec3::new(x.hi, ly.hi, z.hi);
         let gradient = quadric.gradient(point);
         let slope = gradient.dot(dir);
-        let sigma = correction(a, slope, value.value(), index);
+        let sigma = correction(a, slope, value, index);
         let next = t + sigma;
         if !next.is_finite() {
             break;
@@ -466,19 +615,21 @@ fn refine_quadric_any(quadric: &Quadric, ray: &Ray, a: f64, t0: f64, index: usiz
         };
         let (x, y, z) = (coordinate(0), coordinate(1), coordinate(2));
         // A x² + E y² + H z² + 2(B xy + C xz + F yz) + 2(D x + G y + I z) + J.
-        let value = Compensated::new(qj)
-            .add_pair_product(qa, x, x)
-            .add_pair_product(qe, y, y)
-            .add_pair_product(qh, z, z)
-            .add_pair_product(2.0 * qb, x, y)
-            .add_pair_product(2.0 * qc, x, z)
-            .add_pair_product(2.0 * qf, y, z)
-            .add_pair(2.0 * qd, x)
-            .add_pair(2.0 * qg, y)
-            .add_pair(2.0 * qi, z);
+        let value = sum_terms([
+            scaled_product(qa, x, x),
+            scaled_product(qe, y, y),
+            scaled_product(qh, z, z),
+            scaled_product(2.0 * qb, x, y),
+            scaled_product(2.0 * qc, x, z),
+            scaled_product(2.0 * qf, y, z),
+            scaled(2.0 * qd, x),
+            scaled(2.0 * qg, y),
+            scaled(2.0 * qi, z),
+            Dd::new(qj),
+        ]);
         let point = DVec3::new(x.hi, y.hi, z.hi).extend(1.0);
         let slope = 2.0 * dir.dot(quadric.q * point);
-        let sigma = correction(a, slope, value.value(), index);
+        let sigma = correction(a, slope, value, index);
         let next = t + sigma;
         if !next.is_finite() {
             break;
@@ -499,14 +650,17 @@ mod tests {
 
     #[test]
     fn nearer_root_follows_the_sign_bit_of_b() {
+        let root = |a, b, c| nearer_root(a, b, c).map(|(s, _)| s);
         // (s - 2)(s + 2) = s² - 4: the nearer root is -2 whichever zero b is.
-        assert_eq!(nearer_root(1.0, 0.0, -4.0), Some(-2.0));
-        assert_eq!(nearer_root(1.0, -0.0, -4.0), Some(-2.0));
+        assert_eq!(root(1.0, 0.0, -4.0), Some(-2.0));
+        assert_eq!(root(1.0, -0.0, -4.0), Some(-2.0));
         // (s - 1)(s - 3) = s² - 4s + 3 and (s + 1)(s + 3) = s² + 4s + 3.
-        assert_eq!(nearer_root(1.0, -4.0, 3.0), Some(1.0));
-        assert_eq!(nearer_root(1.0, 4.0, 3.0), Some(-3.0));
+        assert_eq!(root(1.0, -4.0, 3.0), Some(1.0));
+        assert_eq!(root(1.0, 4.0, 3.0), Some(-3.0));
         // A tangent ray (double root) misses the sphere.
-        assert_eq!(nearer_root(1.0, -4.0, 4.0), None);
+        assert_eq!(root(1.0, -4.0, 4.0), None);
+        // The slope |2as + b| at either root of s² - 4 is 4.
+        assert_eq!(nearer_root(1.0, 0.0, -4.0), Some((-2.0, 4.0)));
     }
 
     #[test]
