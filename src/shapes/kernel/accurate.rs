@@ -1,6 +1,6 @@
 //! The kernel `legacy-rt` ships: the exact root of the f64 problem to within a few ulps.
-//! A typical test costs about twice the textbook's; one that needs refining, three to
-//! five times (docs/speed-vs-error.md has the figures).
+//! A typical test costs about twice the textbook's; one that needs refining, two and a
+//! half to four times (docs/speed-vs-error.md has the figures).
 //!
 //! Three steps:
 //! 1. Move the ray's base along the ray to the point nearest the shape's centre, in world
@@ -108,12 +108,11 @@ impl Kernel for Accurate {
     #[inline]
     fn plane(plane: &Plane, ray: &Ray) -> Option<f64> {
         let n = plane.normal;
-        let offset = plane.point - ray.base;
-        let numerator = n.dot(offset);
-        let denominator = n.dot(ray.dir);
+        let (over, under) = (n * (plane.point - ray.base), n * ray.dir);
+        let (numerator, denominator) = (over.element_sum(), under.element_sum());
         // Each dot product is good to a few ulps unless its terms cancel.
-        let cancels = |dot: f64, a: DVec3, b: DVec3| dot.abs() < 0.5 * (a * b).abs().element_sum();
-        let t = if cancels(numerator, n, offset) || cancels(denominator, n, ray.dir) {
+        let cancels = |dot: f64, terms: DVec3| 2.0 * dot.abs() < terms.abs().element_sum();
+        let t = if cancels(numerator, over) || cancels(denominator, under) {
             plane_dd(plane, ray)?
         } else {
             if denominator == 0.0 {
@@ -126,7 +125,7 @@ impl Kernel for Accurate {
         // direction, and would flip from pixel to pixel; within a few ulps of the terms
         // it counts as on the screen, which §5.1 draws.
         let z = ray.base.z + t * ray.dir.z;
-        (t >= 0.0 && z <= slack(ray.base.z.abs() + t.abs())).then_some(t)
+        (t >= 0.0 && (z <= 0.0 || z <= slack(ray.base.z.abs() + t.abs()))).then_some(t)
     }
 }
 
@@ -253,7 +252,8 @@ fn axis_hit_any(quadric: &AxisQuadric, ray: &Ray) -> Option<f64> {
         return t.is_finite().then_some(t);
     };
     let (roots, slope) = solve_quadratic_with_slope(a, b, c)?;
-    let moved = offset.abs().max_element() + shift.abs();
+    // The slack of the bound tests, only where a root is out of bounds.
+    let slack_at = |t: f64| slack(offset.abs().max_element() + shift.abs() + t.abs());
     for (index, s) in roots.into_iter().enumerate() {
         let t = shift + s;
         let error = RootError {
@@ -263,9 +263,8 @@ fn axis_hit_any(quadric: &AxisQuadric, ray: &Ray) -> Option<f64> {
         let y = near.y + s * dir.y;
         // A root out of bounds (or behind the base) by more than twice its estimated
         // error stays out after refining: skip it unrefined.
-        let slack = slack(moved + t.abs());
         let outside = (-t).max(low - y).max(y - high);
-        if outside > 0.0 && error.clearly_beyond(outside, t, slack) {
+        if outside > 0.0 && error.clearly_beyond(outside, t, slack_at(t)) {
             continue;
         }
         let (t, y) = if error.needs_refining(t) {
@@ -273,7 +272,8 @@ fn axis_hit_any(quadric: &AxisQuadric, ray: &Ray) -> Option<f64> {
         } else {
             (t, y)
         };
-        if t > 0.0 && low - slack <= y && y <= high + slack {
+        let within = |slack: f64| low - slack <= y && y <= high + slack;
+        if t > 0.0 && (within(0.0) || within(slack_at(t))) {
             return Some(t);
         }
     }
@@ -395,19 +395,20 @@ fn quadric_hit_any(quadric: &Quadric, ray: &Ray) -> Option<f64> {
     let a = dir.dot(m_dir);
     let b = 2.0 * (near.dot(m_dir) + centred.gradient.dot(dir));
     let c = near.dot(m_near) + 2.0 * centred.gradient.dot(near) + centred.value;
-    let roots = solve_quadratic(a, b, c)?;
+    let (roots, slope) = solve_quadratic_with_slope(a, b, c)?;
     let gradient_abs = centred.gradient.abs();
+    let (near_abs, dir_abs) = (near.abs(), dir.abs());
     for (index, s) in roots.into_iter().enumerate() {
         let t = shift + s;
-        let reach = near.abs() + (s * dir).abs();
+        let reach = s.abs() * dir_abs + near_abs;
         let m_reach = centred.m_abs * reach;
         let value_size = reach.dot(m_reach) + 2.0 * gradient_abs.dot(reach) + centred.value.abs();
         let gradient_size = 2.0 * (m_reach + gradient_abs).element_sum();
         let error = RootError {
             spread: 2.0 * value_size + gradient_size * reach.max_element(),
-            slope: (2.0 * a * s + b).abs(),
+            slope,
         };
-        if error.clearly_beyond(-t, t, 0.0) {
+        if t < 0.0 && error.clearly_beyond(-t, t, 0.0) {
             continue;
         }
         let t = if error.needs_refining(t) {
@@ -443,32 +444,34 @@ fn plane_dd_any(plane: &Plane, ray: &Ray) -> Option<f64> {
 }
 
 /// The plane's N·(Q - B) to within an ulp, where its terms cancel: Q - B kept exactly
-/// (two-sum) and the products summed with their rounding errors.
+/// (two-sum) and the products added with their rounding errors ([`sum_terms`]).
 #[inline(always)]
 fn plane_numerator(plane: &Plane, ray: &Ray) -> f64 {
     let n = plane.normal;
     let offset = plane.point - ray.base;
     let offset_error = sum_error(plane.point, -ray.base, offset);
-    Compensated::new(0.0)
-        .add_product(n.x, offset.x)
-        .add_product(n.y, offset.y)
-        .add_product(n.z, offset.z)
-        .add_small(n.dot(offset_error))
-        .value()
+    let term = |n: f64, hi: f64, lo: f64| scaled(n, Dd { hi, lo });
+    sum_terms([
+        term(n.x, offset.x, offset_error.x),
+        term(n.y, offset.y, offset_error.y),
+        term(n.z, offset.z, offset_error.z),
+    ])
 }
 
 /// The plane's N·D to within an ulp, where its terms cancel (a grazing ray).
 #[inline(always)]
 fn plane_denominator(normal: DVec3, dir: DVec3) -> f64 {
-    Compensated::new(0.0)
-        .add_product(normal.x, dir.x)
-        .add_product(normal.y, dir.y)
-        .add_product(normal.z, dir.z)
-        .value()
+    sum_terms([
+        two_prod(normal.x, dir.x),
+        two_prod(normal.y, dir.y),
+        two_prod(normal.z, dir.z),
+    ])
 }
 
 /// The local point rotmat (B - C + t D) as hi + lo pairs, exact to about 2^-106 of its
-/// size: B - C is `offset` (hi) + `offset_error` (lo), exact.
+/// size: B - C is `offset` (hi) + `offset_error` (lo), exact. Unless `exact_y`, the local
+/// y is only rounded to f64: f of a cylinder does not depend on it, and its bound test
+/// needs no more.
 #[inline(always)]
 fn local_point(
     frame: &AxisFrame,
@@ -476,16 +479,21 @@ fn local_point(
     offset_error: DVec3,
     dir: DVec3,
     t: f64,
+    exact_y: bool,
 ) -> [Dd; 3] {
-    let world = |i: usize| {
-        let step = two_prod(t, dir[i]);
-        let sum = two_sum(offset[i], step.hi);
+    let world = |offset: f64, offset_error: f64, dir: f64| {
+        let step = two_prod(t, dir);
+        let sum = two_sum(offset, step.hi);
         Dd {
             hi: sum.hi,
-            lo: sum.lo + (step.lo + offset_error[i]),
+            lo: sum.lo + (step.lo + offset_error),
         }
     };
-    let world = [world(0), world(1), world(2)];
+    let world = [
+        world(offset.x, offset_error.x, dir.x),
+        world(offset.y, offset_error.y, dir.y),
+        world(offset.z, offset_error.z, dir.z),
+    ];
     if frame.identity {
         return world;
     }
@@ -499,7 +507,15 @@ fn local_point(
             .parts()
     };
     let irot = &frame.irot;
-    [row(irot.x_axis), row(irot.y_axis), row(irot.z_axis)]
+    let y = if exact_y {
+        row(irot.y_axis)
+    } else {
+        Dd::new(
+            irot.y_axis
+                .dot(DVec3::new(world[0].hi, world[1].hi, world[2].hi)),
+        )
+    };
+    [row(irot.x_axis), y, row(irot.z_axis)]
 }
 
 /// f = Σ αᵢ Lᵢ² + β Ly + γ at the local point L given as hi + lo pairs, with every
@@ -569,8 +585,9 @@ fn refine_axis_any(
         offset_error,
         ..
     } = *start;
+    let exact_y = quadric.square.y != 0.0 || quadric.linear_y != 0.0;
     for _ in 0..MAX_STEPS {
-        let [x, ly, z] = local_point(&quadric.frame, offset, offset_error, ray.dir, t);
+        let [x, ly, z] = local_point(&quadric.frame, offset, offset_error, ray.dir, t, exact_y);
         let value = residual(quadric, x, ly, z);
         let point = DVec3::new(x.hi, ly.hi, z.hi);
         let gradient = quadric.gradient(point);
@@ -605,15 +622,19 @@ fn refine_quadric_any(quadric: &Quadric, ray: &Ray, a: f64, t0: f64, index: usiz
     let mut t = t0;
     for _ in 0..MAX_STEPS {
         // p = B + t D as hi + lo pairs (the sum's and the product's rounding in lo).
-        let coordinate = |i: usize| {
-            let step = two_prod(t, ray.dir[i]);
-            let sum = two_sum(ray.base[i], step.hi);
+        let coordinate = |base: f64, dir: f64| {
+            let step = two_prod(t, dir);
+            let sum = two_sum(base, step.hi);
             Dd {
                 hi: sum.hi,
                 lo: sum.lo + step.lo,
             }
         };
-        let (x, y, z) = (coordinate(0), coordinate(1), coordinate(2));
+        let (x, y, z) = (
+            coordinate(ray.base.x, ray.dir.x),
+            coordinate(ray.base.y, ray.dir.y),
+            coordinate(ray.base.z, ray.dir.z),
+        );
         // A x² + E y² + H z² + 2(B xy + C xz + F yz) + 2(D x + G y + I z) + J.
         let value = sum_terms([
             scaled_product(qa, x, x),
