@@ -284,10 +284,10 @@ fn axis_hit_any(quadric: &AxisQuadric, ray: &Ray) -> Option<f64> {
 /// |B - C|², the hit is near the base and B'' lies far from it, so t = s0 + s cancels.
 /// There the root is taken from the base instead, c0 / q of the stable formula with
 /// c0 = |B - C|² - r² to the last bit (B - C exact, squares by two-prod) and
-/// b0 = 2 (B - C)·D, which does not cancel for a ray that heads in. `None` unless the
-/// discriminant b0² - 4 a c0 keeps more than three quarters of b0² (so that its square
-/// root loses no digits) and the other conditions hold; the caller then takes the
-/// recentred path.
+/// b0 = 2 (B - C)·D to within a few ulps (to the last bit where its terms cancel).
+/// `None` unless the discriminant b0² - 4 a c0 keeps more than three
+/// quarters of b0², so that it loses no digits either (q, the sum of two positive terms,
+/// cannot), and the ray starts outside and heads in; the caller then refines.
 #[inline(always)]
 fn just_outside(
     quadric: &AxisQuadric,
@@ -319,7 +319,18 @@ fn just_outside(
         square(offset.z, offset_error.z),
         Dd::new(quadric.constant),
     ]);
-    let b0 = 2.0 * (heading + offset_error.dot(ray.dir));
+    // (B - C)·D cancels for a ray that heads in nearly along the surface; there it is
+    // recomputed to the last bit.
+    let b0 = if 2.0 * heading.abs() < (offset * ray.dir).abs().element_sum() {
+        let term = |d: f64, hi: f64, lo: f64| scaled(d, Dd { hi, lo });
+        2.0 * sum_terms([
+            term(ray.dir.x, offset.x, offset_error.x),
+            term(ray.dir.y, offset.y, offset_error.y),
+            term(ray.dir.z, offset.z, offset_error.z),
+        ])
+    } else {
+        2.0 * (heading + offset_error.dot(ray.dir))
+    };
     let discriminant = b0 * b0 - 4.0 * a * c0;
     if !(c0 > 0.0 && discriminant > 0.75 * b0 * b0) {
         return None;
