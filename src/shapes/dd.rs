@@ -114,6 +114,17 @@ impl Mul<Dd> for f64 {
     }
 }
 
+/// u² for a pair u, as an unnormalised pair: hi² exactly by two-prod, the cross term
+/// 2 hi lo in lo (lo² is below the precision).
+#[inline(always)]
+pub fn square(u: Dd) -> Dd {
+    let p = two_prod(u.hi, u.hi);
+    Dd {
+        hi: p.hi,
+        lo: p.lo + 2.0 * u.hi * u.lo,
+    }
+}
+
 /// c u v for pairs u and v, as an unnormalised pair: c (u.hi v.hi) exactly by two
 /// two-products, the cross terms c (u.hi v.lo + u.lo v.hi) in lo.
 #[inline(always)]

@@ -32,7 +32,9 @@
 //! bound does not flip from pixel to pixel on the rounding of t and of the ray.
 
 use super::Kernel;
-use crate::shapes::dd::{Compensated, Dd, scaled, scaled_product, sum_terms, two_prod, two_sum};
+use crate::shapes::dd::{
+    Compensated, Dd, scaled, scaled_product, square, sum_terms, two_prod, two_sum,
+};
 use crate::shapes::{
     AxisFrame, AxisQuadric, Plane, Quadric, Ray, RootRule, solve_quadratic,
     solve_quadratic_with_slope,
@@ -306,27 +308,20 @@ fn just_outside(
     if heading >= 0.0 {
         return None;
     }
-    let square = |u: f64, e: f64| {
-        let p = two_prod(u, u);
-        Dd {
-            hi: p.hi,
-            lo: p.lo + 2.0 * u * e,
-        }
-    };
+    let exact = |hi: f64, lo: f64| Dd { hi, lo };
     let c0 = sum_terms([
-        square(offset.x, offset_error.x),
-        square(offset.y, offset_error.y),
-        square(offset.z, offset_error.z),
+        square(exact(offset.x, offset_error.x)),
+        square(exact(offset.y, offset_error.y)),
+        square(exact(offset.z, offset_error.z)),
         Dd::new(quadric.constant),
     ]);
     // (B - C)·D cancels for a ray that heads in nearly along the surface; there it is
     // recomputed to the last bit.
     let b0 = if 2.0 * heading.abs() < (offset * ray.dir).abs().element_sum() {
-        let term = |d: f64, hi: f64, lo: f64| scaled(d, Dd { hi, lo });
         2.0 * sum_terms([
-            term(ray.dir.x, offset.x, offset_error.x),
-            term(ray.dir.y, offset.y, offset_error.y),
-            term(ray.dir.z, offset.z, offset_error.z),
+            scaled(ray.dir.x, exact(offset.x, offset_error.x)),
+            scaled(ray.dir.y, exact(offset.y, offset_error.y)),
+            scaled(ray.dir.z, exact(offset.z, offset_error.z)),
         ])
     } else {
         2.0 * (heading + offset_error.dot(ray.dir))
@@ -536,13 +531,6 @@ fn local_point(
 #[inline(always)]
 fn residual(quadric: &AxisQuadric, x: Dd, y: Dd, z: Dd) -> f64 {
     let alpha = quadric.square;
-    let square = |u: Dd| {
-        let p = two_prod(u.hi, u.hi);
-        Dd {
-            hi: p.hi,
-            lo: p.lo + 2.0 * u.hi * u.lo,
-        }
-    };
     let (mut xx, mut zz) = (square(x), square(z));
     if alpha.x != 1.0 || alpha.z != 1.0 {
         xx = scaled(alpha.x, xx);
@@ -715,6 +703,43 @@ mod tests {
                 Some(-0.5),
                 "{dir}"
             );
+        }
+    }
+
+    #[test]
+    fn from_just_outside_the_base_formula_agrees_with_the_refinement() {
+        // The eye 1e-3 to 10 above spheres of radius 1e4 to 1e6, looking down at 10 to
+        // 80 degrees from the horizon: the base formula must take these rays, and agree
+        // to 4 ulps with the general refinement started from the recentred root.
+        for (radius, height, degrees) in [
+            (1e4, 1e-3, 10.0),
+            (1e5, 0.5, 45.0),
+            (1e6, 10.0, 80.0),
+            (3e5, 2.0, 30.0),
+        ] {
+            let centre = DVec3::new(1.5, -2.0, 0.25);
+            let sphere = crate::shapes::Sphere::new(centre, radius, "s").unwrap();
+            let up = DVec3::new(1.0, 2.0, -2.0) / 3.0;
+            let side = DVec3::new(2.0, 1.0, 2.0) / 3.0;
+            let angle = f64::to_radians(degrees);
+            let ray = Ray {
+                base: centre + (radius + height) * up,
+                dir: (-angle.sin() * up + angle.cos() * side).normalize(),
+            };
+            let quadric = &sphere.equation;
+            let start = recentre(&ray, centre);
+            let a = ray.dir.length_squared();
+            let direct = just_outside(quadric, &ray, start.offset, start.offset_error, a)
+                .expect("the base formula takes a ray from just outside");
+            let t0 = start.shift - (start.near.length_squared() - radius * radius).abs().sqrt();
+            let (refined, _) = refine_axis_any(quadric, &ray, &start, ray.dir, a, t0, 0);
+            let ulp = f64::EPSILON * refined.abs();
+            assert!(
+                (direct - refined).abs() <= 4.0 * ulp,
+                "r {radius} h {height}: {direct} against {refined}"
+            );
+            // And the shipped kernel returns it.
+            assert_eq!(Accurate::axis_quadric(quadric, &ray), Some(direct));
         }
     }
 }
