@@ -3,7 +3,7 @@
 //!
 //! The accurate kernel evaluates a quadric at a trial point (the residual of one
 //! refinement step), where the terms cancel down to a small number and f64 would keep
-//! none of its digits, with [`Compensated`] sums of exact products; a general quadric's
+//! none of its digits, with sums of exact products ([`sum_terms`]); a general quadric's
 //! centred constants are computed once, at load, with [`Dd`] arithmetic.
 //! [`two_prod`] takes the product's rounding error from
 //! a fused multiply-add, which is exact on every machine: the kernel runs its refinement
@@ -147,12 +147,19 @@ pub fn scaled(c: f64, u: Dd) -> Dd {
     }
 }
 
-/// The sum of N pairs, rounded once: the leading parts are added two by two as a tree
-/// (each addition by two-sum, its error kept), then all the errors and low parts, also as
-/// a tree. As accurate as [`Compensated`] (Sum2) on the same terms, but a chain of
-/// log2(N) additions instead of N, which matters where the caller waits on the sum.
+/// The sum of N pairs, rounded once (see [`sum_pair`]).
 #[inline(always)]
 pub fn sum_terms<const N: usize>(terms: [Dd; N]) -> f64 {
+    sum_pair(terms).value()
+}
+
+/// The sum of N pairs as an unnormalised pair: the leading parts are added two by two as
+/// a tree (each addition by two-sum, its error kept), then all the errors and low parts,
+/// also as a tree. As accurate as summing in twice the precision and rounding (the Sum2
+/// algorithm of Ogita, Rump and Oishi), but a chain of log2(N) additions instead of N,
+/// which matters where the caller waits on the sum.
+#[inline(always)]
+pub fn sum_pair<const N: usize>(terms: [Dd; N]) -> Dd {
     let mut leading = terms.map(|term| term.hi);
     let mut errors = [0.0; N];
     let mut count = N;
@@ -170,7 +177,10 @@ pub fn sum_terms<const N: usize>(terms: [Dd; N]) -> f64 {
         }
         count -= half;
     }
-    leading[0] + (plain_sum(terms.map(|term| term.lo)) + plain_sum(errors))
+    Dd {
+        hi: leading[0],
+        lo: plain_sum(terms.map(|term| term.lo)) + plain_sum(errors),
+    }
 }
 
 /// An f64 sum of N numbers, added two by two as a tree.
@@ -188,72 +198,6 @@ fn plain_sum<const N: usize>(mut values: [f64; N]) -> f64 {
         count -= half;
     }
     if N == 0 { 0.0 } else { values[0] }
-}
-
-/// A running f64 sum whose rounding errors are gathered apart (the Sum2 and Dot2
-/// algorithms of Ogita, Rump and Oishi): the result is as accurate as if it had been
-/// summed in twice the precision and then rounded, for a fraction of double-double's cost.
-#[derive(Debug, Clone, Copy)]
-pub struct Compensated {
-    sum: f64,
-    error: f64,
-}
-
-impl Compensated {
-    /// The sum that starts at `value`.
-    #[inline(always)]
-    pub fn new(value: f64) -> Compensated {
-        Compensated {
-            sum: value,
-            error: 0.0,
-        }
-    }
-
-    /// Adds x, keeping the addition's rounding error.
-    #[inline(always)]
-    pub fn plus(self, x: f64) -> Compensated {
-        let s = two_sum(self.sum, x);
-        Compensated {
-            sum: s.hi,
-            error: self.error + s.lo,
-        }
-    }
-
-    /// Adds a b, keeping the product's and the addition's rounding errors.
-    #[inline(always)]
-    pub fn add_product(self, a: f64, b: f64) -> Compensated {
-        let p = two_prod(a, b);
-        let s = two_sum(self.sum, p.hi);
-        Compensated {
-            sum: s.hi,
-            error: self.error + (s.lo + p.lo),
-        }
-    }
-
-    /// Adds a term small enough that its own rounding does not matter (a correction).
-    #[inline(always)]
-    pub fn add_small(self, x: f64) -> Compensated {
-        Compensated {
-            sum: self.sum,
-            error: self.error + x,
-        }
-    }
-
-    /// The sum as its running f64 sum and gathered error, not normalised: |lo| may
-    /// exceed half an ulp of hi, which is enough for a factor of an exact product.
-    #[inline(always)]
-    pub fn parts(self) -> Dd {
-        Dd {
-            hi: self.sum,
-            lo: self.error,
-        }
-    }
-
-    /// The sum rounded to f64.
-    #[inline(always)]
-    pub fn value(self) -> f64 {
-        self.sum + self.error
-    }
 }
 
 #[cfg(test)]
@@ -283,24 +227,14 @@ mod tests {
     }
 
     #[test]
-    fn compensated_sum_keeps_what_cancels() {
+    fn sum_terms_keeps_what_cancels() {
         // 1e16 + 1 + 1 - 1e16 = 2 exactly; in f64 each 1 is lost against 1e16 (ulp 2 there,
         // ties to even), and the plain sum is 0.
         let plain = 1e16f64 + 1.0 + 1.0 - 1e16;
         assert_eq!(plain, 0.0);
-        let sum = Compensated::new(1e16).plus(1.0).plus(1.0).plus(-1e16);
-        assert_eq!(sum.value(), 2.0);
-        // (1e8 + 1)² - 1e16 - 2e8 = 1, with the square kept exact by two-prod.
-        let x = 1e8 + 1.0;
-        let sum = Compensated::new(-1e16).add_product(x, x).plus(-2e8);
-        assert_eq!(sum.value(), 1.0);
-    }
-
-    #[test]
-    fn sum_terms_keeps_what_cancels() {
-        // The same sums as above, added as a tree.
         let terms = [1e16, 1.0, 1.0, -1e16].map(Dd::new);
         assert_eq!(sum_terms(terms), 2.0);
+        // (1e8 + 1)² - 1e16 - 2e8 = 1, with the square kept exact by two-prod.
         let x = 1e8 + 1.0;
         assert_eq!(
             sum_terms([two_prod(x, x), Dd::new(-1e16), Dd::new(-2e8)]),

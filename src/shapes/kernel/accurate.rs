@@ -33,7 +33,7 @@
 
 use super::Kernel;
 use crate::shapes::dd::{
-    Compensated, Dd, scaled, scaled_product, square, sum_terms, two_prod, two_sum,
+    Dd, scaled, scaled_product, square, sum_pair, sum_terms, two_prod, two_sum,
 };
 use crate::shapes::{
     AxisFrame, AxisQuadric, Plane, Quadric, Ray, RootRule, solve_quadratic,
@@ -505,12 +505,11 @@ fn local_point(
     }
     // Row i of rotmat is column i of irot.
     let row = |axis: DVec3| {
-        Compensated::new(0.0)
-            .add_product(axis.x, world[0].hi)
-            .add_product(axis.y, world[1].hi)
-            .add_product(axis.z, world[2].hi)
-            .add_small(axis.x * world[0].lo + axis.y * world[1].lo + axis.z * world[2].lo)
-            .parts()
+        sum_pair([
+            scaled(axis.x, world[0]),
+            scaled(axis.y, world[1]),
+            scaled(axis.z, world[2]),
+        ])
     };
     let irot = &frame.irot;
     let y = if exact_y {
