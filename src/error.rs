@@ -10,6 +10,69 @@
 use std::fmt;
 use thiserror::Error;
 
+/// The most characters of the offending line an error shows: a 10 MB line is shown as
+/// the part around the column, with `...` where it was cut.
+const SHOWN_LINE: usize = 100;
+
+/// The most characters of a token quoted in a message.
+const SHOWN_TOKEN: usize = 40;
+
+/// How a character is shown in an error: as itself, or as an escape such as `\u{1b}`
+/// when it is a control character (ESC, BEL: they would act on the terminal) or an
+/// invisible one (a byte-order mark, zero-width spaces, direction marks). Tabs stay tabs.
+fn visible(c: char) -> Option<String> {
+    let invisible = matches!(c, '\u{200b}'..='\u{200f}' | '\u{2028}'..='\u{202e}'
+        | '\u{2060}'..='\u{2064}' | '\u{feff}');
+    ((c.is_control() && c != '\t') || invisible).then(|| c.escape_unicode().to_string())
+}
+
+/// A token as quoted in a message: escaped as [`visible`] does, and cut after
+/// `SHOWN_TOKEN` characters.
+pub(crate) fn quoted(token: &str) -> String {
+    let mut shown = String::new();
+    for (i, c) in token.chars().enumerate() {
+        if i == SHOWN_TOKEN {
+            shown.push_str("...");
+            break;
+        }
+        match visible(c) {
+            Some(escape) => shown.push_str(&escape),
+            None => shown.push(c),
+        }
+    }
+    shown
+}
+
+/// The part of `line` an error shows around the 1-based `column`, escaped, and the
+/// caret's padding under it (tabs repeated so that the caret lines up).
+fn excerpt(line: &str, column: usize) -> (String, String) {
+    let count = line.chars().count();
+    let first = if count <= SHOWN_LINE {
+        0
+    } else {
+        (column - 1)
+            .saturating_sub(SHOWN_LINE / 2)
+            .min(count - SHOWN_LINE)
+    };
+    let last = (first + SHOWN_LINE).min(count);
+    let (mut shown, mut pad) = (String::new(), String::new());
+    if first > 0 {
+        shown.push_str("...");
+        pad.push_str("   ");
+    }
+    for (i, c) in line.chars().enumerate().take(last).skip(first) {
+        let piece = visible(c).unwrap_or_else(|| c.to_string());
+        if i + 1 < column {
+            pad.extend(piece.chars().map(|p| if p == '\t' { '\t' } else { ' ' }));
+        }
+        shown.push_str(&piece);
+    }
+    if last < count {
+        shown.push_str("...");
+    }
+    (shown, pad)
+}
+
 /// A place in the scene text: 1-based line and column (in characters), plus the line itself.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Location {
@@ -55,7 +118,7 @@ impl fmt::Display for Found {
         match self {
             Found::EndOfInput => write!(f, "the end of the input"),
             Found::EndOfLine => write!(f, "the end of the line"),
-            Found::Token(token) => write!(f, "`{token}`"),
+            Found::Token(token) => write!(f, "`{}`", quoted(token)),
         }
     }
 }
@@ -72,7 +135,7 @@ pub enum SyntaxError {
         found: Found,
     },
     /// `nan`, `inf`, or a number too large for a double (Decision of spec §2.2).
-    #[error("expected {expected}, found `{text}`, which is not a finite number")]
+    #[error("expected {expected}, found `{}`, which is not a finite number", quoted(.text))]
     NonFinite {
         /// What the format needs here.
         expected: String,
@@ -81,7 +144,8 @@ pub enum SyntaxError {
     },
     /// A type code that the course never defined (spec §3.2).
     #[error(
-        "unknown type code {code}: the codes are 10, 11, 13-17 and 19-24, or the keyword QUADRIC"
+        "unknown type code {}: the codes are 10, 11, 13-17 and 19-24, or the keyword QUADRIC",
+        quoted(.code)
     )]
     UnknownTypeCode {
         /// The code as written.
@@ -97,6 +161,12 @@ pub enum SyntaxError {
         /// A pointer to what the writer probably meant.
         hint: &'static str,
     },
+    /// The text starts with a UTF-8 byte-order mark, which some editors put first.
+    #[error(
+        "the file starts with an invisible byte-order mark (\\u{{feff}}), which the course's \
+         program could not read either; save the file as plain text (\"UTF-8 without BOM\")"
+    )]
+    ByteOrderMark,
     /// A `QUADRIC` line that ends before its ten coefficients (spec §3.3).
     #[error(
         "the QUADRIC line needs its 10 coefficients A B C D E F G H I J on the same line, \
@@ -171,7 +241,7 @@ pub enum MeaningError {
         value: f64,
     },
     /// The texture file could not be opened or is not a binary P6 PPM.
-    #[error("cannot read the texture file `{path}`: {reason}")]
+    #[error("cannot read the texture file `{}`: {reason}", quoted(.path))]
     Texture {
         /// The path as written in the scene.
         path: String,
@@ -221,16 +291,11 @@ impl fmt::Display for SceneError {
             line_text,
         } = &self.at;
         let gutter = " ".repeat(line.to_string().len());
-        // The caret line repeats the tabs of the source line so that it lines up.
-        let pad: String = line_text
-            .chars()
-            .take(column - 1)
-            .map(|c| if c == '\t' { '\t' } else { ' ' })
-            .collect();
+        let (shown, pad) = excerpt(line_text, *column);
         writeln!(f, "error: {}", self.kind)?;
         writeln!(f, "{gutter}--> line {line}, column {column}")?;
         writeln!(f, "{gutter} |")?;
-        writeln!(f, "{line} | {line_text}")?;
+        writeln!(f, "{line} | {shown}")?;
         write!(f, "{gutter} | {pad}^")?;
         for note in &self.notes {
             write!(f, "\n{gutter} = note: {note}")?;
@@ -305,5 +370,58 @@ mod tests {
         };
         let shown = error.to_string();
         assert!(shown.ends_with("7 | \tx y\n  | \t ^"), "{shown}");
+    }
+
+    #[test]
+    fn control_and_invisible_characters_are_shown_as_escapes() {
+        let error = SceneError {
+            kind: SyntaxError::Expected {
+                expected: "a number".into(),
+                found: Found::Token("\u{1b}[31m1\u{7}".into()),
+            }
+            .into(),
+            at: Location {
+                line: 4,
+                column: 2,
+                line_text: "\u{feff}\u{1b}[31m1".into(),
+            },
+            notes: vec![],
+        };
+        let shown = error.to_string();
+        assert!(!shown.contains(['\u{1b}', '\u{7}', '\u{feff}']), "{shown}");
+        assert!(shown.contains("found `\\u{1b}[31m1\\u{7}`"), "{shown}");
+        // The caret stands under the escape of the second character, ESC.
+        assert!(
+            shown.ends_with("4 | \\u{feff}\\u{1b}[31m1\n  |         ^"),
+            "{shown}"
+        );
+    }
+
+    #[test]
+    fn a_long_line_is_shown_around_the_column_and_a_long_token_is_cut() {
+        let line_text = format!("{}x{}", "1".repeat(5_000), "2".repeat(5_000));
+        let token = "9".repeat(1_000_000);
+        let error = SceneError {
+            kind: SyntaxError::NonFinite {
+                expected: "a number".into(),
+                text: token,
+            }
+            .into(),
+            at: Location {
+                line: 1,
+                column: 5_001,
+                line_text,
+            },
+            notes: vec![],
+        };
+        let shown = error.to_string();
+        assert!(shown.len() < 400, "{} bytes", shown.len());
+        let expected_token = format!("`{}...`", "9".repeat(SHOWN_TOKEN));
+        assert!(shown.contains(&expected_token), "{shown}");
+        // 50 characters before the column, the column itself, 49 after, cut at both ends.
+        let excerpt = format!("1 | ...{}x{}...", "1".repeat(50), "2".repeat(49));
+        assert!(shown.contains(&excerpt), "{shown}");
+        let caret = format!("  | {}^", " ".repeat(53));
+        assert!(shown.ends_with(&caret), "{shown}");
     }
 }

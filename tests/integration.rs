@@ -23,6 +23,8 @@ mod examples;
 mod performance;
 #[path = "integration/pixels.rs"]
 mod pixels;
+#[path = "integration/reliability.rs"]
+mod reliability;
 #[path = "integration/robustness.rs"]
 mod robustness;
 #[path = "integration/scale.rs"]

@@ -1,4 +1,7 @@
-//! Writing the image: binary PPM as the course's program wrote it (spec §4.7), or PNG.
+//! Writing the image: binary PPM as the course's program wrote it (spec §4.7), or PNG,
+//! to standard output or to a file ([`file`]).
+
+pub mod file;
 
 use crate::render::Image;
 use std::io::{self, Write};
@@ -10,16 +13,6 @@ pub enum Format {
     Ppm,
     /// PNG, 8-bit RGB.
     Png,
-}
-
-impl Format {
-    /// PNG for a `.png` file name (any case), PPM otherwise.
-    pub fn from_path(path: &std::path::Path) -> Format {
-        match path.extension() {
-            Some(ext) if ext.eq_ignore_ascii_case("png") => Format::Png,
-            _ => Format::Ppm,
-        }
-    }
 }
 
 /// The image encoded in `format`, complete, so that nothing is written unless all of it

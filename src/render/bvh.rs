@@ -4,12 +4,20 @@
 //! It changes which objects are *tested*, never the answer. Every object whose box the
 //! ray enters before the best hit so far is tested exactly as the linear scan tests it,
 //! and the best hit is chosen with the scan's rule: smallest t, and on an exact tie the
-//! earlier object. Unbounded objects (planes, tiled planes, `QUADRIC` records) have no
+//! earlier object. Both count a hit on a bounded object only where the ray has entered
+//! the object's padded box by then ([`Boxes::admits`]), with the same arithmetic as the
+//! traversal's box tests: a kernel's t for a shape thinner than the rounding of its
+//! coordinates (a paraboloid of height 1e-21) can lie far outside the shape, and the
+//! tree must not skip what the scan would take. For ordinary shapes every hit lies well
+//! inside its box, so the test changes nothing there. Unbounded objects (planes, tiled planes, `QUADRIC` records) have no
 //! box and are tested for every ray, as before.
 //!
-//! The tree is built once per render. Each split is at the median of the centroids
-//! along the longest axis; leaves hold at most [`LEAF_SIZE`] objects. The build is
-//! deterministic: ties in the median are broken by object index.
+//! The tree is built once per render. Each split is chosen along the longest axis of the
+//! centroids by the binned surface area heuristic, which can make a lopsided tree (700
+//! spheres at x = 1.5^i make a chain); below depth [`SAH_DEPTH`] the split is at the
+//! median instead, which halves the objects at each level, so no tree is deeper than
+//! `SAH_DEPTH` + 32 and the traversal stack cannot overflow. Leaves hold at most
+//! [`LEAF_SIZE`] objects. The build is deterministic: ties are broken by object index.
 
 use crate::scene::Scene;
 use crate::shapes::Ray;
@@ -21,6 +29,15 @@ pub const MIN_OBJECTS: usize = 8;
 
 /// Most objects in a leaf.
 const LEAF_SIZE: usize = 1;
+
+/// The depth below which splits are at the median rather than by the surface area
+/// heuristic. Real scenes' trees are far shallower; this only bounds degenerate ones.
+const SAH_DEPTH: usize = 64;
+
+/// The deepest a tree can be: `SAH_DEPTH` levels of any split, then median splits, which
+/// halve the objects at each level (and there are fewer than 2^32 of them, as indices are
+/// `u32`).
+const MAX_DEPTH: usize = SAH_DEPTH + 32;
 
 /// An axis-aligned box.
 #[derive(Debug, Clone, Copy)]
@@ -67,6 +84,29 @@ struct Node {
     axis: u32,
 }
 
+/// Every object's padded box in scene order, `None` for an object without one.
+#[derive(Debug, Clone)]
+pub struct Boxes(Vec<Option<Aabb>>);
+
+impl Boxes {
+    /// The boxes of `scene`'s objects.
+    pub fn new(scene: &Scene) -> Boxes {
+        let boxes = scene.objects.iter().map(|object| {
+            let (min, max) = object.shape.bounds()?;
+            Some(pad(Aabb { min, max }))
+        });
+        Boxes(boxes.collect())
+    }
+
+    /// Whether a hit at distance `t` on object `index` counts: the ray (`base`, with
+    /// `inverse` = 1 / its direction) has entered the object's box by `t`, or the object
+    /// has no box.
+    #[inline]
+    pub fn admits(&self, index: usize, base: DVec3, inverse: DVec3, t: f64) -> bool {
+        self.0[index].is_none_or(|b| b.entered(base, inverse, t))
+    }
+}
+
 /// The hierarchy: nodes, the bounded objects' indices in leaf order, and the indices of
 /// the objects that have no box.
 #[derive(Debug, Clone)]
@@ -80,11 +120,16 @@ impl Bvh {
     /// The tree for `scene`, or `None` when it has fewer than `MIN_OBJECTS` (8) bounded
     /// objects.
     pub fn new(scene: &Scene) -> Option<Bvh> {
+        Bvh::over(&Boxes::new(scene))
+    }
+
+    /// The tree over `boxes`, or `None` when fewer than `MIN_OBJECTS` of them are boxes.
+    pub fn over(boxes: &Boxes) -> Option<Bvh> {
         let mut items = Vec::new();
         let mut unbounded = Vec::new();
-        for (index, object) in scene.objects.iter().enumerate() {
-            match object.shape.bounds() {
-                Some((min, max)) => items.push((index as u32, pad(Aabb { min, max }))),
+        for (index, b) in boxes.0.iter().enumerate() {
+            match b {
+                Some(b) => items.push((index as u32, *b)),
                 None => unbounded.push(index as u32),
             }
         }
@@ -96,12 +141,14 @@ impl Bvh {
             order: Vec::with_capacity(items.len()),
             unbounded,
         };
-        bvh.build(&mut items);
+        bvh.build(&mut items, 0);
         Some(bvh)
     }
 
-    /// Appends the subtree of `items` and returns its node's index.
-    fn build(&mut self, items: &mut [(u32, Aabb)]) -> usize {
+    /// Appends the subtree of `items`, whose root is at `depth` (0 for the whole tree),
+    /// and returns its node's index.
+    fn build(&mut self, items: &mut [(u32, Aabb)], depth: usize) -> usize {
+        debug_assert!(depth <= MAX_DEPTH, "median splits bound the depth");
         let bounds = items
             .iter()
             .fold(Aabb::EMPTY, |b, (_, item)| b.union(*item));
@@ -129,7 +176,10 @@ impl Bvh {
         } else {
             2
         };
-        let middle = match sah_split(items, axis, spread.min[axis], extent[axis]) {
+        let sah = (depth < SAH_DEPTH)
+            .then(|| sah_split(items, axis, spread.min[axis], extent[axis]))
+            .flatten();
+        let middle = match sah {
             Some(middle) => middle,
             None => {
                 let middle = items.len() / 2;
@@ -140,8 +190,8 @@ impl Bvh {
             }
         };
         let (left, right) = items.split_at_mut(middle);
-        self.build(left);
-        let right_at = self.build(right);
+        self.build(left, depth + 1);
+        let right_at = self.build(right, depth + 1);
         self.nodes[at].first = right_at as u32;
         self.nodes[at].count = 0;
         self.nodes[at].axis = axis as u32;
@@ -260,10 +310,11 @@ fn sah_split(items: &mut [(u32, Aabb)], axis: usize, low: f64, extent: f64) -> O
     Some(counts[..split].iter().sum())
 }
 
-/// The nodes still to visit, starting with the root. A median split halves the objects
-/// at each level, so 64 entries cover far more objects than memory holds.
+/// The nodes still to visit, starting with the root. Visiting a node pops it and pushes
+/// at most its two children, so the stack holds at most one node per level plus one:
+/// `MAX_DEPTH + 1` entries always suffice.
 struct Stack {
-    nodes: [u32; 64],
+    nodes: [u32; MAX_DEPTH + 1],
     len: usize,
 }
 
@@ -271,7 +322,7 @@ impl Stack {
     #[inline]
     fn new() -> Stack {
         Stack {
-            nodes: [0; 64],
+            nodes: [0; MAX_DEPTH + 1],
             len: 1,
         }
     }

@@ -8,7 +8,7 @@
 mod bvh;
 mod shading;
 
-pub use bvh::Bvh;
+pub use bvh::{Boxes, Bvh};
 pub use shading::{Screen, material_at};
 
 use crate::scene::{Light, Scene};
@@ -24,6 +24,10 @@ pub const DEFAULT_MAX_DIST: f64 = 32.0;
 /// touch could otherwise bounce without the path length ever reaching MAX_DIST.
 pub const MAX_BOUNCES: usize = 10_000;
 
+/// The most worker threads a render starts, whatever [`Options::threads`] asks for:
+/// beyond the cores there is nothing to gain, and a typo must not start 100,000 threads.
+pub const MAX_THREADS: usize = 256;
+
 /// What to render.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Options {
@@ -36,7 +40,8 @@ pub struct Options {
     /// How ray-shape distances are computed; [`KernelChoice::Accurate`] unless comparing.
     pub kernel: KernelChoice,
     /// Worker threads: 1 renders on the calling thread (the legacy behaviour), 0 uses
-    /// every core. The image is the same bytes for every value.
+    /// every core, and more than [`MAX_THREADS`] counts as `MAX_THREADS`. The image is
+    /// the same bytes for every value.
     pub threads: usize,
     /// Use the bounding volume hierarchy of `src/render/bvh.rs` where the scene has
     /// enough bounded objects for it to pay off; `false` forces the legacy linear scan
@@ -183,7 +188,10 @@ fn render_with<K: Kernel>(
     let mut stats = Stats::default();
     let pool = match options.threads {
         1 => None,
-        n => rayon::ThreadPoolBuilder::new().num_threads(n).build().ok(),
+        n => rayon::ThreadPoolBuilder::new()
+            .num_threads(n.min(MAX_THREADS))
+            .build()
+            .ok(),
     };
     match pool {
         None => {
@@ -236,6 +244,8 @@ pub fn ray_trace(scene: &Scene, options: &Options, ray: Ray) -> DVec3 {
 /// The scene and what every ray needs of the options; `K` computes the hits.
 struct Tracer<'a, K> {
     scene: &'a Scene,
+    /// The objects' boxes: a hit counts only inside its object's box (`Boxes::admits`).
+    boxes: Boxes,
     /// The hierarchy over the bounded objects, when there are enough of them.
     bvh: Option<Bvh>,
     max_dist: f64,
@@ -249,9 +259,11 @@ impl<'a, K: Kernel> Tracer<'a, K> {
             last_pixel: DVec2::new((options.width - 1) as f64, (options.height - 1) as f64),
             window: scene.window,
         };
+        let boxes = Boxes::new(scene);
         Tracer {
             scene,
-            bvh: options.accelerate.then(|| Bvh::new(scene)).flatten(),
+            bvh: options.accelerate.then(|| Bvh::over(&boxes)).flatten(),
+            boxes,
             max_dist: options.max_dist,
             screen,
             kernel: PhantomData,
@@ -262,13 +274,16 @@ impl<'a, K: Kernel> Tracer<'a, K> {
     /// earlier object (spec §4.6).
     #[inline]
     fn closest_hit(&self, ray: &Ray, last_hit: Option<usize>) -> Option<(usize, f64)> {
+        let inverse = ray.dir.recip();
+        let counts =
+            |index: usize, t: f64| t > 0.0 && self.boxes.admits(index, ray.base, inverse, t);
         if let Some(bvh) = &self.bvh {
             return bvh.closest(ray, |index| {
                 if Some(index) == last_hit {
                     return None;
                 }
                 let t = self.scene.objects[index].shape.hit_with::<K>(ray)?;
-                (t > 0.0).then_some(t)
+                counts(index, t).then_some(t)
             });
         }
         let mut best: Option<(usize, f64)> = None;
@@ -277,8 +292,8 @@ impl<'a, K: Kernel> Tracer<'a, K> {
                 continue;
             }
             if let Some(t) = object.shape.hit_with::<K>(ray)
-                && t > 0.0
                 && best.is_none_or(|(_, best_t)| t < best_t)
+                && counts(index, t)
             {
                 best = Some((index, t));
             }
@@ -289,12 +304,15 @@ impl<'a, K: Kernel> Tracer<'a, K> {
     /// Whether any object but `skip` lies on `ray` closer than `dist` (spec §4.3).
     #[inline]
     fn blocked(&self, ray: &Ray, skip: usize, dist: f64) -> bool {
+        let inverse = ray.dir.recip();
         let blocks = |index: usize| {
             index != skip
                 && self.scene.objects[index]
                     .shape
                     .hit_with::<K>(ray)
-                    .is_some_and(|t| t > 0.0 && t < dist)
+                    .is_some_and(|t| {
+                        t > 0.0 && t < dist && self.boxes.admits(index, ray.base, inverse, t)
+                    })
         };
         match &self.bvh {
             Some(bvh) => bvh.any(ray, dist, blocks),

@@ -265,6 +265,13 @@ fn texture(record: &Record) -> Result<Pattern, Invalid> {
 fn read_texture(path: &str) -> Result<Texture, String> {
     use image::ImageDecoder;
     use image::codecs::pnm::{PnmDecoder, PnmSubtype, SampleEncoding};
+    // A FIFO or a device would block the load or never end; only a file is a texture.
+    if !std::fs::metadata(path)
+        .map_err(|e| e.to_string())?
+        .is_file()
+    {
+        return Err("it is not a regular file".into());
+    }
     let file = std::fs::File::open(path).map_err(|e| e.to_string())?;
     let mut decoder = PnmDecoder::new(std::io::BufReader::new(file)).map_err(|e| e.to_string())?;
     if decoder.subtype() != PnmSubtype::Pixmap(SampleEncoding::Binary) {

@@ -12,14 +12,15 @@ use std::fmt::Write;
 /// Decimals printed for every real number.
 const DECIMALS: usize = 6;
 
+/// A number with `DECIMALS` decimals; in exponent form where that would print more than
+/// 15 digits before the point or show a non-zero value as zero.
 fn number(value: f64) -> String {
     let text = format!("{value:.DECIMALS$}");
-    // -0.000000 and 0.000000 are the same number to a reader; print one form.
-    if text
-        .trim_start_matches('-')
-        .bytes()
-        .all(|b| b == b'0' || b == b'.')
-    {
+    let zero = (text.trim_start_matches('-').bytes()).all(|b| b == b'0' || b == b'.');
+    if value.abs() >= 1e15 || (zero && value != 0.0) {
+        format!("{value:.DECIMALS$e}")
+    } else if zero {
+        // -0.0 and 0.0 are the same number to a reader; print one form.
         text.trim_start_matches('-').to_string()
     } else {
         text
@@ -213,7 +214,20 @@ mod tests {
     fn numbers_have_fixed_decimals_and_no_negative_zero() {
         assert_eq!(number(1.0 / 3.0), "0.333333");
         assert_eq!(number(-0.0), "0.000000");
-        assert_eq!(number(-1e-9), "0.000000");
+        assert_eq!(number(0.0), "0.000000");
         assert_eq!(number(-2.5), "-2.500000");
+        assert_eq!(number(123456.5), "123456.500000");
+    }
+
+    #[test]
+    fn numbers_that_fixed_decimals_would_lose_are_in_exponent_form() {
+        // 1e308 in fixed form is 309 digits, and 1e-300 would read as zero.
+        assert_eq!(number(1e308), "1.000000e308");
+        assert_eq!(number(-2.5e15), "-2.500000e15");
+        assert_eq!(number(1e-300), "1.000000e-300");
+        assert_eq!(number(-1e-9), "-1.000000e-9");
+        // Fixed decimals as long as they show the value as non-zero.
+        assert_eq!(number(1e-6), "0.000001");
+        assert_eq!(number(4e-7), "4.000000e-7");
     }
 }

@@ -269,16 +269,23 @@ impl Layout {
 /// The `QUADRIC` record: its coefficients stand on the keyword's line; a material follows.
 pub static QUADRIC: Layout = layout!(0, "quadric", [M[0], M[1], M[2]]);
 
-/// Codes that other variants of the course used, with what they meant there.
+/// Codes that other variants of the course used, with what they meant there and what to
+/// tell the writer. The message must not suggest a renumbering: a file of another
+/// variant also orders its lines differently, so a changed code loads nonsense silently.
 pub fn unsupported(code: u32) -> Option<(&'static str, &'static str)> {
     match code {
         12 => Some((
             "projector",
-            "; a plane is type 14, a light 10 and a spotlight 11 in this format",
+            ": this file looks written for another version of the course, which numbered its \
+             records differently and put their lines in another order, so changing the code \
+             will not make it load; each record must be rewritten in this format, whose type \
+             codes and lines are listed in docs/scene-format.md",
         )),
         18 => Some((
             "reflective sphere",
-            "; a sphere is type 13, and any object reflects through its specular line",
+            ": the course never defined it; in this format every object reflects through its \
+             specular line, so a mirror sphere is a sphere (type 13) with a non-zero specular \
+             line (docs/scene-format.md)",
         )),
         _ => None,
     }

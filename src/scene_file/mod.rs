@@ -103,6 +103,9 @@ const HEADER: &Layout = &Layout {
 
 /// Reads the scene text into records.
 pub(crate) fn read(text: &str) -> Result<SceneText, Pending> {
+    if text.starts_with('\u{feff}') {
+        return Err(Pending::new(0, SyntaxError::ByteOrderMark));
+    }
     let mut reader = Reader {
         text,
         rest: text,
@@ -179,13 +182,9 @@ impl<'a> Reader<'a> {
             return (self.offset(), Found::EndOfLine);
         }
         let token = lexeme::token(self.rest).map_or("", |(_, t)| t);
-        let shown: String = token.chars().take(40).collect();
-        let shown = if shown.len() < token.len() {
-            format!("{shown}...")
-        } else {
-            shown
-        };
-        (self.offset(), Found::Token(shown))
+        // Enough for the message, which cuts a long token short (`error::quoted`).
+        let kept = token.char_indices().nth(64).map_or(token.len(), |(i, _)| i);
+        (self.offset(), Found::Token(token[..kept].to_string()))
     }
 
     fn expected(&self, expected: String) -> Pending {
