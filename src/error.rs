@@ -161,6 +161,16 @@ pub enum SyntaxError {
         /// A pointer to what the writer probably meant.
         hint: &'static str,
     },
+    /// More records than this program reads: a limit of the reader, so that a huge input
+    /// is an error and not an exhausted memory.
+    #[error(
+        "the scene has more than {limit} records (lights and objects together), the most this \
+         program reads"
+    )]
+    TooManyRecords {
+        /// The limit.
+        limit: usize,
+    },
     /// The text starts with a UTF-8 byte-order mark, which some editors put first.
     #[error(
         "the file starts with an invisible byte-order mark (\\u{{feff}}), which the course's \
@@ -251,12 +261,6 @@ pub enum MeaningError {
     /// A `QUADRIC` whose ten coefficients are all zero.
     #[error("all ten coefficients of the QUADRIC are zero, so it describes no surface")]
     ZeroQuadric,
-    /// More records than this program accepts.
-    #[error("the scene has more than {limit} lights and objects; this program stops there")]
-    TooManyRecords {
-        /// The limit.
-        limit: usize,
-    },
 }
 
 /// Either kind of scene error.

@@ -1,5 +1,5 @@
 //! Writing the image: binary PPM as the course's program wrote it (spec §4.7), or PNG,
-//! to standard output or to a file ([`file`]).
+//! to standard output or to a file ([`mod@file`]).
 
 pub mod file;
 

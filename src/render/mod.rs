@@ -9,7 +9,7 @@ mod bvh;
 mod shading;
 
 pub use bvh::{Boxes, Bvh};
-pub use shading::{Screen, material_at};
+pub(crate) use shading::{Screen, material_at};
 
 use crate::scene::{Light, Scene};
 use crate::shapes::kernel::{Accurate, Kernel, KernelChoice, StableRoots, Textbook, TextbookF32};
@@ -22,7 +22,7 @@ pub const DEFAULT_MAX_DIST: f64 = 32.0;
 
 /// A cap on mirror bounces, far beyond any real scene: a ray trapped between mirrors that
 /// touch could otherwise bounce without the path length ever reaching MAX_DIST.
-pub const MAX_BOUNCES: usize = 10_000;
+pub(crate) const MAX_BOUNCES: usize = 10_000;
 
 /// The most worker threads a render starts, whatever [`Options::threads`] asks for:
 /// beyond the cores there is nothing to gain, and a typo must not start 100,000 threads.
@@ -111,7 +111,7 @@ impl Stats {
 
 /// A channel in [0, 1] to a byte: clamp, times 255, truncate (spec §4.7). NaN gives 0.
 #[inline]
-pub fn to_byte(channel: f64) -> u8 {
+pub(crate) fn to_byte(channel: f64) -> u8 {
     if channel.is_nan() {
         return 0;
     }

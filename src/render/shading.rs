@@ -8,11 +8,11 @@ use std::f64::consts::{PI, TAU};
 
 /// What texture tile mode needs of the projection: (W - 1, H - 1) and the world window.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Screen {
+pub(crate) struct Screen {
     /// Image width and height minus one, as reals.
-    pub last_pixel: DVec2,
+    pub(crate) last_pixel: DVec2,
     /// World window width and height.
-    pub window: DVec2,
+    pub(crate) window: DVec2,
 }
 
 /// `trunc(x)` as an integer (saturating for absurd values), as C's cast to int does.
@@ -22,7 +22,7 @@ fn trunc(x: f64) -> i64 {
 
 /// The object's material at `surface`.
 #[inline]
-pub fn material_at(object: &Object, surface: &Surface, screen: &Screen) -> Material {
+pub(crate) fn material_at(object: &Object, surface: &Surface, screen: &Screen) -> Material {
     match &object.pattern {
         Pattern::Plain => object.material,
         Pattern::Tiles { tile, background } => {
@@ -32,12 +32,12 @@ pub fn material_at(object: &Object, surface: &Surface, screen: &Screen) -> Mater
                 *background
             }
         }
-        Pattern::Texture { texture, mode } => {
-            let size = match &object.shape {
-                crate::shapes::Shape::FinitePlane(plane) => plane.size,
-                _ => DVec2::ONE,
-            };
-            let texel = texel(texture, *mode, surface.plane_xy, size, screen);
+        Pattern::Texture {
+            texture,
+            mode,
+            size,
+        } => {
+            let texel = texel(texture, *mode, surface.plane_xy, *size, screen);
             Material {
                 ambient: object.material.ambient * texel,
                 diffuse: object.material.diffuse * texel,

@@ -6,14 +6,58 @@ use crate::error::{MeaningError, Pending};
 use crate::scene_file::layout::label::*;
 use crate::scene_file::{Group, GroupData, Record, SceneText};
 use crate::shapes::{
-    Cone, Cylinder, FinitePlane, Hyperboloid, Invalid, Paraboloid, Plane, PlaneFrame, Quadric,
-    Shape, Sphere, positive, unit,
+    Cone, Cylinder, FinitePlane, Hyperboloid, Invalid, Paraboloid, Parameter, Plane, PlaneFrame,
+    Quadric, Shape, Sphere, positive, unit,
 };
 use glam::{DVec2, DVec3};
 use std::sync::Arc;
 
 /// The most texels a texture may have (a 16384 x 16384 image).
 const MAX_TEXELS: u64 = 1 << 28;
+
+/// A number of a record that describes no valid object: its group (by label), its index
+/// in the group, and what is wrong.
+struct Refusal {
+    label: &'static str,
+    index: usize,
+    error: MeaningError,
+}
+
+impl Refusal {
+    /// A refusal of number `index` of group `label`, for `map_err`.
+    fn of(label: &'static str, index: usize) -> impl Fn(MeaningError) -> Refusal {
+        move |error| Refusal {
+            label,
+            index,
+            error,
+        }
+    }
+
+    /// Where a shape's refused parameter stands in a record of type `code`.
+    fn of_shape(code: u32) -> impl Fn(Invalid) -> Refusal {
+        move |Invalid { parameter, error }| {
+            let (label, index) = match (parameter, code) {
+                (Parameter::Normal, _) => (NORMAL, 0),
+                (Parameter::XDirection, _) => (XDIR, 0),
+                (Parameter::CentreLine, _) => (CENTRE_LINE, 0),
+                (Parameter::Radius, 13 | 19) => (RADIUS, 0),
+                (Parameter::Radius, 24) => (END_RADIUS_HALF_HEIGHT, 0),
+                (Parameter::Radius, _) => (RADIUS_HEIGHT, 0),
+                (Parameter::Height, 15 | 17) => (SIZE, 1),
+                (Parameter::Height, 24) => (END_RADIUS_HALF_HEIGHT, 1),
+                (Parameter::Height, _) => (RADIUS_HEIGHT, 1),
+                (Parameter::Width, _) => (SIZE, 0),
+                (Parameter::Waist, _) => (WAIST_RADIUS, 0),
+                (Parameter::Coefficients, _) => (COEFFICIENTS, 0),
+            };
+            Refusal {
+                label,
+                index,
+                error,
+            }
+        }
+    }
+}
 
 pub(super) fn build(text: SceneText) -> Result<Scene, Pending> {
     let split = text.split.clone();
@@ -25,12 +69,12 @@ pub(super) fn build(text: SceneText) -> Result<Scene, Pending> {
 
 fn build_scene(text: SceneText) -> Result<Scene, Pending> {
     let window = pair(&text.window);
-    let header_error = |invalid: Invalid| {
-        let number = &text.window.numbers()[invalid.index];
-        Pending::new(number.at, invalid.error)
+    let header_error = |index: usize| {
+        let at = text.window.numbers()[index].at;
+        move |error| Pending::new(at, error)
     };
-    positive("world window", "width", WINDOW, 0, window.x).map_err(header_error)?;
-    positive("world window", "height", WINDOW, 1, window.y).map_err(header_error)?;
+    positive("world window", "width", window.x).map_err(header_error(0))?;
+    positive("world window", "height", window.y).map_err(header_error(1))?;
     let mut scene = Scene {
         window,
         viewpoint: vec3(&text.viewpoint),
@@ -51,17 +95,17 @@ fn build_scene(text: SceneText) -> Result<Scene, Pending> {
 }
 
 /// The place of the number a constructor complained about.
-fn locate(record: &Record, invalid: Invalid) -> Pending {
-    let at = if invalid.label == COEFFICIENTS {
-        record.coefficients[invalid.index].at
+fn locate(record: &Record, refusal: Refusal) -> Pending {
+    let at = if refusal.label == COEFFICIENTS {
+        record.coefficients[refusal.index].at
     } else {
-        let group = record.group(invalid.label);
+        let group = record.group(refusal.label);
         group
             .numbers()
-            .get(invalid.index)
+            .get(refusal.index)
             .map_or(group.at, |n| n.at)
     };
-    Pending::new(at, invalid.error)
+    Pending::new(at, refusal.error)
 }
 
 fn vec3(group: &Group) -> DVec3 {
@@ -93,11 +137,11 @@ fn material(record: &Record, labels: [&str; 3]) -> Material {
     }
 }
 
-fn light(record: &Record) -> Result<Light, Invalid> {
+fn light(record: &Record) -> Result<Light, Refusal> {
     let emissivity = vec3(record.group(EMISSIVITY));
     let location = vec3(record.group(LOCATION));
     let beam = if record.layout.code == 11 {
-        let direction = unit(vec3(record.group(AIM)) - location).ok_or(Invalid {
+        let direction = unit(vec3(record.group(AIM)) - location).ok_or(Refusal {
             label: AIM,
             index: 0,
             error: MeaningError::AimAtLocation,
@@ -105,12 +149,7 @@ fn light(record: &Record) -> Result<Light, Invalid> {
         let half_angle = scalar(record.group(HALF_ANGLE));
         if !(half_angle > 0.0 && half_angle < 180.0) {
             let error = MeaningError::SpotAngle { value: half_angle };
-            let (label, index) = (HALF_ANGLE, 0);
-            return Err(Invalid {
-                label,
-                index,
-                error,
-            });
+            return Err(Refusal::of(HALF_ANGLE, 0)(error));
         }
         Some(Beam {
             direction,
@@ -129,30 +168,27 @@ fn light(record: &Record) -> Result<Light, Invalid> {
 }
 
 /// A shader index, truncated to an integer (spec §5.5).
-fn shader(record: &Record) -> Result<Shader, Invalid> {
+fn shader(record: &Record) -> Result<Shader, Refusal> {
     let value = scalar(record.group(SHADER));
     match value.trunc() {
         0.0 => Ok(Shader::Stripes),
         1.0 => Ok(Shader::ColourWheel),
-        _ => Err(Invalid {
-            label: SHADER,
-            index: 0,
-            error: MeaningError::UnknownShader {
-                record: record.layout.name,
-                value,
-            },
-        }),
+        _ => Err(Refusal::of(SHADER, 0)(MeaningError::UnknownShader {
+            record: record.layout.name,
+            value,
+        })),
     }
 }
 
-fn object(record: &Record) -> Result<Object, Invalid> {
+fn object(record: &Record) -> Result<Object, Refusal> {
     let name = record.layout.name;
     let group = |label| record.group(label);
     let mut pattern = Pattern::Plain;
+    let refused = Refusal::of_shape(record.layout.code);
     let shape = match record.layout.code {
         13 | 19 => {
             let centre = vec3(group(CENTRE));
-            let sphere = Sphere::new(centre, scalar(group(RADIUS)), name)?;
+            let sphere = Sphere::new(centre, scalar(group(RADIUS)), name).map_err(&refused)?;
             if record.layout.code == 19 {
                 let shader = shader(record)?;
                 pattern = Pattern::Shader {
@@ -164,7 +200,7 @@ fn object(record: &Record) -> Result<Object, Invalid> {
         }
         14 | 20 => {
             let point = vec3(group(POINT));
-            let plane = Plane::new(vec3(group(NORMAL)), point, name)?;
+            let plane = Plane::new(vec3(group(NORMAL)), point, name).map_err(&refused)?;
             if record.layout.code == 20 {
                 let shader = shader(record)?;
                 pattern = Pattern::Shader {
@@ -176,21 +212,22 @@ fn object(record: &Record) -> Result<Object, Invalid> {
         }
         15 | 17 => {
             let (normal, point, xdir) = frame_vectors(record);
-            let plane = FinitePlane::new(normal, point, xdir, pair(group(SIZE)), name)?;
+            let plane =
+                FinitePlane::new(normal, point, xdir, pair(group(SIZE)), name).map_err(&refused)?;
             if record.layout.code == 17 {
-                pattern = texture(record)?;
+                pattern = texture(record, plane.size)?;
             }
             Shape::FinitePlane(plane)
         }
         16 => {
             let (normal, point, xdir) = frame_vectors(record);
-            let frame = PlaneFrame::new(normal, point, xdir, name)?;
+            let frame = PlaneFrame::new(normal, point, xdir, name).map_err(&refused)?;
             let tile = pair(group(TILE_SIZE));
-            positive(name, "tile width", TILE_SIZE, 0, tile.x)?;
-            positive(name, "tile height", TILE_SIZE, 1, tile.y)?;
+            positive(name, "tile width", tile.x).map_err(Refusal::of(TILE_SIZE, 0))?;
+            positive(name, "tile height", tile.y).map_err(Refusal::of(TILE_SIZE, 1))?;
             let background = material(record, [BACK_AMBIENT, BACK_DIFFUSE, BACK_SPECULAR]);
             pattern = Pattern::Tiles { tile, background };
-            Shape::FramedPlane(frame)
+            Shape::TiledPlane(frame)
         }
         21..=24 => {
             let [r, h] = pair(group(if record.layout.code == 24 {
@@ -202,12 +239,17 @@ fn object(record: &Record) -> Result<Object, Invalid> {
             let line = vec3(group(CENTRE_LINE));
             let first = |label| vec3(group(label));
             match record.layout.code {
-                21 => Shape::Paraboloid(Paraboloid::new(first(VERTEX), line, r, h)?),
-                22 => Shape::Cylinder(Cylinder::new(first(BASE), line, r, h)?),
-                23 => Shape::Cone(Cone::new(first(APEX), line, r, h)?),
+                21 => {
+                    Shape::Paraboloid(Paraboloid::new(first(VERTEX), line, r, h).map_err(&refused)?)
+                }
+                22 => Shape::Cylinder(Cylinder::new(first(BASE), line, r, h).map_err(&refused)?),
+                23 => Shape::Cone(Cone::new(first(APEX), line, r, h).map_err(&refused)?),
                 _ => {
                     let waist = scalar(group(WAIST_RADIUS));
-                    Shape::Hyperboloid(Hyperboloid::new(first(WAIST_CENTRE), line, r, h, waist)?)
+                    Shape::Hyperboloid(
+                        Hyperboloid::new(first(WAIST_CENTRE), line, r, h, waist)
+                            .map_err(&refused)?,
+                    )
                 }
             }
         }
@@ -216,7 +258,7 @@ fn object(record: &Record) -> Result<Object, Invalid> {
             for (c, number) in coefficients.iter_mut().zip(&record.coefficients) {
                 *c = number.value;
             }
-            Shape::Quadric(Quadric::new(coefficients)?)
+            Shape::Quadric(Quadric::new(coefficients).map_err(&refused)?)
         }
     };
     Ok(Object {
@@ -228,36 +270,31 @@ fn object(record: &Record) -> Result<Object, Invalid> {
     })
 }
 
-/// The textured plane's texture and mode (spec §5.8).
-fn texture(record: &Record) -> Result<Pattern, Invalid> {
+/// The textured plane's texture and mode (spec §5.8), for a rectangle of `size`.
+fn texture(record: &Record, size: DVec2) -> Result<Pattern, Refusal> {
     let mode_value = scalar(record.group(MODE));
     let mode = match mode_value.trunc() {
         1.0 => TextureMode::Fit,
         2.0 => TextureMode::Tile,
         _ => {
             let error = MeaningError::TextureMode { value: mode_value };
-            let (label, index) = (MODE, 0);
-            return Err(Invalid {
-                label,
-                index,
-                error,
-            });
+            return Err(Refusal::of(MODE, 0)(error));
         }
     };
     let GroupData::FileName(path) = &record.group(TEXTURE).data else {
         unreachable!("the texture slot holds a file name");
     };
-    let texture = read_texture(path).map_err(|reason| Invalid {
-        label: TEXTURE,
-        index: 0,
-        error: MeaningError::Texture {
+    let texture = read_texture(path).map_err(|reason| {
+        let error = MeaningError::Texture {
             path: path.clone(),
             reason,
-        },
+        };
+        Refusal::of(TEXTURE, 0)(error)
     })?;
     Ok(Pattern::Texture {
         texture: Arc::new(texture),
         mode,
+        size,
     })
 }
 

@@ -95,35 +95,35 @@ impl Dump {
             Shape::FinitePlane(s) => {
                 self.vector("normal", s.frame.plane.normal);
                 self.vector("point", s.frame.plane.point);
-                self.matrix("frame", s.frame.rot);
+                self.matrix("frame", s.frame.local_from_world);
                 self.row("size", &s.size.to_array());
             }
-            Shape::FramedPlane(s) => {
+            Shape::TiledPlane(s) => {
                 self.vector("normal", s.plane.normal);
                 self.vector("point", s.plane.point);
-                self.matrix("frame", s.rot);
+                self.matrix("frame", s.local_from_world);
             }
             Shape::Paraboloid(s) => {
                 self.axis("vertex", &s.equation.frame);
-                self.row("radius", &[s.radius]);
-                self.row("height", &[s.height]);
+                self.row("radius", &[s.size.radius]);
+                self.row("height", &[s.size.height]);
                 self.row("k", &[s.k]);
             }
             Shape::Cylinder(s) => {
                 self.axis("base centre", &s.equation.frame);
-                self.row("radius", &[s.radius]);
-                self.row("height", &[s.height]);
+                self.row("radius", &[s.size.radius]);
+                self.row("height", &[s.size.height]);
             }
             Shape::Cone(s) => {
                 self.axis("apex", &s.equation.frame);
-                self.row("radius", &[s.radius]);
-                self.row("height", &[s.height]);
+                self.row("radius", &[s.size.radius]);
+                self.row("height", &[s.size.height]);
                 self.row("k", &[s.k]);
             }
             Shape::Hyperboloid(s) => {
                 self.axis("waist centre", &s.equation.frame);
-                self.row("end radius", &[s.radius]);
-                self.row("half-height", &[s.half_height]);
+                self.row("end radius", &[s.size.radius]);
+                self.row("half-height", &[s.size.height]);
                 self.row("waist", &[s.waist]);
                 self.row("k", &[s.k]);
             }
@@ -142,7 +142,7 @@ impl Dump {
                 self.row("tile size", &tile.to_array());
                 self.material("back ", background);
             }
-            Pattern::Texture { texture, mode } => {
+            Pattern::Texture { texture, mode, .. } => {
                 let mode = match mode {
                     TextureMode::Fit => "1 (fit)",
                     TextureMode::Tile => "2 (tile)",

@@ -107,6 +107,8 @@ pub enum Pattern {
         texture: Arc<Texture>,
         /// Fit or tile.
         mode: TextureMode,
+        /// The rectangle's width and height, over which fit mode stretches the texture.
+        size: DVec2,
     },
     /// 19, 20: a shader replacing the ambient (spec §5.5).
     Shader {

@@ -5,10 +5,10 @@
 //! physical line (spec §2.2). What a number *means* is left to [`crate::scene`]; this module
 //! only records values and where they stood.
 
-pub mod layout;
+pub(crate) mod layout;
 mod lexeme;
 
-use crate::error::{Found, MeaningError, Pending, SyntaxError};
+use crate::error::{Found, Pending, SyntaxError};
 use layout::{Layout, Slot};
 use lexeme::NumberToken;
 
@@ -18,16 +18,16 @@ pub const MAX_RECORDS: usize = 1_000_000;
 
 /// A number and the byte offset where it stood.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Number {
+pub(crate) struct Number {
     /// The value (always finite).
-    pub value: f64,
+    pub(crate) value: f64,
     /// Byte offset of its first character.
-    pub at: usize,
+    pub(crate) at: usize,
 }
 
 /// What one group holds.
 #[derive(Debug, Clone, PartialEq)]
-pub enum GroupData {
+pub(crate) enum GroupData {
     /// The numbers of a numeric group, as many as its slot says.
     Numbers(Vec<Number>),
     /// The file-name token of the textured plane.
@@ -36,18 +36,18 @@ pub enum GroupData {
 
 /// One group of a record, read according to its [`Slot`].
 #[derive(Debug, Clone, PartialEq)]
-pub struct Group {
+pub(crate) struct Group {
     /// The slot's label (see [`layout::label`]).
-    pub label: &'static str,
+    pub(crate) label: &'static str,
     /// Byte offset of its first token.
-    pub at: usize,
+    pub(crate) at: usize,
     /// Its contents.
-    pub data: GroupData,
+    pub(crate) data: GroupData,
 }
 
 impl Group {
     /// The numbers of a numeric group (empty for a file name).
-    pub fn numbers(&self) -> &[Number] {
+    pub(crate) fn numbers(&self) -> &[Number] {
         match &self.data {
             GroupData::Numbers(numbers) => numbers,
             GroupData::FileName(_) => &[],
@@ -57,22 +57,22 @@ impl Group {
 
 /// One record: a type code line (or a `QUADRIC` line) and the groups after it.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Record {
+pub(crate) struct Record {
     /// The layout the record was read with.
-    pub layout: &'static Layout,
+    pub(crate) layout: &'static Layout,
     /// Byte offset of the type code or keyword.
-    pub at: usize,
+    pub(crate) at: usize,
     /// 1-based line of the type code.
-    pub line: usize,
+    pub(crate) line: usize,
     /// The ten coefficients of a `QUADRIC` line; empty for numbered records.
-    pub coefficients: Vec<Number>,
+    pub(crate) coefficients: Vec<Number>,
     /// The groups, one per slot of the layout.
-    pub groups: Vec<Group>,
+    pub(crate) groups: Vec<Group>,
 }
 
 impl Record {
     /// The group with this label. Every label of the layout is present once read.
-    pub fn group(&self, label: &str) -> &Group {
+    pub(crate) fn group(&self, label: &str) -> &Group {
         self.groups
             .iter()
             .find(|g| g.label == label)
@@ -82,16 +82,16 @@ impl Record {
 
 /// A whole scene file as records: the header groups and the records in file order.
 #[derive(Debug, Clone, PartialEq)]
-pub struct SceneText {
+pub(crate) struct SceneText {
     /// The world window width and height.
-    pub window: Group,
+    pub(crate) window: Group,
     /// The viewpoint.
-    pub viewpoint: Group,
+    pub(crate) viewpoint: Group,
     /// The records, in file order.
-    pub records: Vec<Record>,
+    pub(crate) records: Vec<Record>,
     /// If a group's numbers ran across a line break: a note saying which, for any error
     /// found later (the usual cause is a missing number there).
-    pub split: Option<String>,
+    pub(crate) split: Option<String>,
 }
 
 /// The name the header has in messages.
@@ -135,7 +135,7 @@ fn read_all(reader: &mut Reader<'_>) -> Result<SceneText, Pending> {
             let limit = MAX_RECORDS;
             return Err(Pending::new(
                 reader.offset(),
-                MeaningError::TooManyRecords { limit },
+                SyntaxError::TooManyRecords { limit },
             ));
         }
         records.push(reader.record()?);

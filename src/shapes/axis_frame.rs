@@ -1,8 +1,7 @@
 //! The local frame of the course's quadrics 21-24: `rotmat` turns the unit centre line to
 //! +y and `irot` (its transpose) turns back (spec §5.6, note 003).
 
-use super::{Invalid, Ray, unit, unit_or_zero_error};
-use crate::scene_file::layout::label;
+use super::{Invalid, Parameter, Ray, unit, unit_or_zero_error};
 use glam::{DMat3, DVec3};
 
 /// Centre point and rotation of an axis-aligned quadric.
@@ -26,7 +25,7 @@ impl AxisFrame {
         centre_line: DVec3,
         record: &'static str,
     ) -> Result<AxisFrame, Invalid> {
-        let c = unit_or_zero_error(centre_line, record, label::CENTRE_LINE)?;
+        let c = unit_or_zero_error(centre_line, record, Parameter::CentreLine)?;
         let rows = if c.x == 0.0 && c.z == 0.0 {
             if c.y > 0.0 {
                 [DVec3::X, DVec3::Y, DVec3::Z]

@@ -15,10 +15,23 @@
 //!
 //! A ray L = B' + t D' turns it into a t² + b t + c = 0 with
 //! a = Σ αᵢ D'ᵢ², b = 2 Σ αᵢ B'ᵢ D'ᵢ + β D'y, c = f(B'): exactly the coefficients that
-//! note 003 writes out shape by shape. The kernels in [`super::kernel`] solve it.
+//! note 003 writes out shape by shape. [`AxisQuadric::hit`] is note 003's algorithm,
+//! written once for all five shapes; the kernels of [`super::kernel`] supply its
+//! arithmetic.
 
-use super::AxisFrame;
+use super::kernel::{Kernel, Steps, Tangent};
+use super::{AxisFrame, Invalid, Parameter, Ray, positive};
 use glam::DVec3;
+use num_traits::Float;
+
+/// The size of a quadric 21-24 as its record gives it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Size {
+    /// The radius at the open end (at y = ±h for the hyperboloid), > 0.
+    pub radius: f64,
+    /// The height h (the hyperboloid's half-height), > 0.
+    pub height: f64,
+}
 
 /// How a root is chosen (spec §5.2 and §5.6).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -41,7 +54,7 @@ pub struct AxisQuadric {
     /// Centre point and rotation (the identity for a sphere).
     pub frame: AxisFrame,
     /// (αx, αy, αz).
-    pub square: DVec3,
+    pub alpha: DVec3,
     /// β, the coefficient of Ly.
     pub linear_y: f64,
     /// γ.
@@ -50,22 +63,99 @@ pub struct AxisQuadric {
     pub rule: RootRule,
 }
 
+impl RootRule {
+    /// The quadrics' rule with bounds `low <= y <= high`.
+    pub fn within(low: f64, high: f64) -> RootRule {
+        RootRule::FirstPositiveWithin { low, high }
+    }
+
+    /// Whether a root at distance `t` whose point has local y `y` counts: in front of the
+    /// base and within the bounds, or within `slack()` of them (a kernel's allowance for
+    /// the rounding of y, computed only when y is outside).
+    #[inline(always)]
+    pub fn accepts(self, t: f64, y: f64, slack: impl FnOnce() -> f64) -> bool {
+        match self {
+            RootRule::Nearer => true,
+            RootRule::FirstPositiveWithin { low, high } => {
+                let within = |slack: f64| low - slack <= y && y <= high + slack;
+                t > 0.0 && (within(0.0) || within(slack()))
+            }
+        }
+    }
+}
+
 impl AxisQuadric {
+    /// x² + αy y² + z² + β y + γ = 0 in `frame` under `rule`: every row of the table has
+    /// αx = αz = 1.
+    pub fn new(frame: AxisFrame, alpha_y: f64, beta: f64, gamma: f64, rule: RootRule) -> Self {
+        AxisQuadric {
+            frame,
+            alpha: DVec3::new(1.0, alpha_y, 1.0),
+            linear_y: beta,
+            constant: gamma,
+            rule,
+        }
+    }
+
+    /// The frame and size that every record 21-24 starts from: the frame from the first
+    /// point and the centre line, and a radius and a height (the hyperboloid's
+    /// half-height, named so by `height_name`) that must be positive.
+    pub(crate) fn measure(
+        record: &'static str,
+        point: DVec3,
+        centre_line: DVec3,
+        (radius, height): (f64, f64),
+        height_name: &'static str,
+    ) -> Result<(AxisFrame, Size), Invalid> {
+        let frame = AxisFrame::new(point, centre_line, record)?;
+        let radius = positive(record, "radius", radius).map_err(Parameter::Radius.refuses())?;
+        let height = positive(record, height_name, height).map_err(Parameter::Height.refuses())?;
+        Ok((frame, Size { radius, height }))
+    }
+
+    /// Where `ray` meets the surface (spec §5.2, §5.6), step by step as note 003 computes
+    /// it; kernel `K` does the arithmetic of each step. The caller keeps only t > 0: the
+    /// sphere's nearer root may be negative (a ray from inside).
+    #[inline(always)]
+    pub fn hit<K: Kernel>(&self, ray: &Ray) -> Option<f64> {
+        // Note 003: "transform the ray into the object's coordinate system": translate by
+        // the base centre, rotate by rotmat. B' = rotmat (B - C), D' = rotmat D.
+        let local = K::local_ray(&self.frame, ray);
+        // "a = dx² + dz², b = 2(bx dx + bz dz), c = bx² + bz² - r²" for the cylinder, and
+        // the other rows of the table above.
+        let abc = K::coefficients(self, &local);
+        let steps = Steps::new(self, ray, &local, abc);
+        match self.rule {
+            // The sphere: the smaller root of the discriminant > 0, even when negative.
+            RootRule::Nearer => K::nearer_distance(&steps, K::nearer_root(abc)?),
+            // "t = (-b ± sqrt(b² - 4ac)) / 2a", then "if the y of the hit is out of
+            // bounds, try the other root": the smallest t > 0 whose y is within bounds.
+            RootRule::FirstPositiveWithin { low, high } => {
+                let roots = K::roots(abc, Tangent::Counts)?;
+                for (index, root) in roots.into_iter().enumerate() {
+                    if let Some((t, y)) = K::distance_and_height(&steps, root, index, (low, high))
+                        && self.rule.accepts(t, y, || K::bound_slack(&local, t))
+                    {
+                        return Some(t);
+                    }
+                }
+                None
+            }
+        }
+    }
+
     /// f at a local point, in f64.
     #[inline]
     pub fn value(&self, local: DVec3) -> f64 {
-        (self.square * local).dot(local) + self.linear_y * local.y + self.constant
+        self.coefficients(local, DVec3::ZERO).2
     }
 
     /// a, b, c of the quadratic along the local ray B' + t D', written as note 003 does.
-    #[inline]
+    #[inline(always)]
     pub fn coefficients(&self, base: DVec3, dir: DVec3) -> (f64, f64, f64) {
-        let weighted = self.square * dir;
-        (
-            weighted.dot(dir),
-            2.0 * weighted.dot(base) + self.linear_y * dir.y,
-            self.value(base),
-        )
+        let (square, linear_y, constant) = (self.alpha, self.linear_y, self.constant);
+        let [base, dir] = [base, dir].map(|v| v.to_array());
+        coefficients(square.to_array(), linear_y, constant, base, dir)
     }
 
     /// The unit world normal at a world point: ∇f in the local frame, turned back by
@@ -81,7 +171,7 @@ impl AxisQuadric {
     /// The local gradient ∇f = (2αx Lx, 2αy Ly + β, 2αz Lz).
     #[inline]
     pub fn gradient(&self, local: DVec3) -> DVec3 {
-        let mut gradient = 2.0 * self.square * local;
+        let mut gradient = 2.0 * self.alpha * local;
         gradient.y += self.linear_y;
         gradient
     }
@@ -96,7 +186,7 @@ impl AxisQuadric {
             x: ax,
             y: ay,
             z: az,
-        } = self.square;
+        } = self.alpha;
         if ax <= 0.0 || ax != az {
             return None;
         }
@@ -130,4 +220,25 @@ impl AxisQuadric {
         }
         Some((min, max))
     }
+}
+
+/// a = Σ αᵢ dᵢ², b = 2 Σ αᵢ bᵢ dᵢ + β dy, c = Σ αᵢ bᵢ² + β by + γ in any precision (the
+/// f32 kernel rounds everything to f32 first).
+#[inline(always)]
+pub(crate) fn coefficients<F: Float>(
+    square: [F; 3],
+    linear_y: F,
+    constant: F,
+    base: [F; 3],
+    dir: [F; 3],
+) -> (F, F, F) {
+    let dot = |u: [F; 3], v: [F; 3]| u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+    let times = |u: [F; 3], v: [F; 3]| [u[0] * v[0], u[1] * v[1], u[2] * v[2]];
+    let weighted = times(square, dir);
+    let two = F::one() + F::one();
+    (
+        dot(weighted, dir),
+        two * dot(weighted, base) + linear_y * dir[1],
+        dot(times(square, base), base) + linear_y * base[1] + constant,
+    )
 }

@@ -10,10 +10,14 @@
 //! 2 5           radius at the open end and height
 //! ```
 //! Local frame: axis +y, apex at the origin; surface x² + z² = k y² with k = (r/h)².
+//!
+//! Its hit is note 003's algorithm, [`AxisQuadric::hit`], on the cone's row:
+//! a = dx² + dz² - k dy², b = 2(bx dx + bz dz - k by dy), c = bx² + bz² - k by², the
+//! smallest positive root with 0 <= y <= h; along a generator a = 0 (the linear case).
+//! Its normal ([`AxisQuadric::normal`]) is the local (2x, -2k y, 2z), turned back by
+//! `irot`; zero at the apex.
 
-use super::kernel::{Accurate, Kernel};
-use super::{AxisFrame, AxisQuadric, Invalid, Ray, RootRule, positive};
-use crate::scene_file::layout::label;
+use super::{AxisQuadric, Invalid, RootRule, Size};
 use glam::DVec3;
 
 /// A cone with its frame and scale k = (r/h)².
@@ -21,58 +25,31 @@ use glam::DVec3;
 pub struct Cone {
     /// x² - k y² + z² = 0 for 0 <= y <= h, with the frame (apex, `rotmat`, `irot`).
     pub equation: AxisQuadric,
-    /// Radius at y = h, > 0.
-    pub radius: f64,
-    /// Height, > 0.
-    pub height: f64,
+    /// Radius at y = h, and height.
+    pub size: Size,
     /// k = (r/h)².
     pub k: f64,
 }
 
 impl Cone {
-    /// Validates radius and height, builds the frame and k.
+    /// Validates radius and height, builds the frame and k: x² - k y² + z² = 0 for
+    /// 0 <= y <= h.
     pub fn new(apex: DVec3, centre_line: DVec3, radius: f64, height: f64) -> Result<Self, Invalid> {
-        const RECORD: &str = "cone";
-        let frame = AxisFrame::new(apex, centre_line, RECORD)?;
-        let radius = positive(RECORD, "radius", label::RADIUS_HEIGHT, 0, radius)?;
-        let height = positive(RECORD, "height", label::RADIUS_HEIGHT, 1, height)?;
-        let slope = radius / height;
+        let (frame, size) =
+            AxisQuadric::measure("cone", apex, centre_line, (radius, height), "height")?;
+        let slope = size.radius / size.height;
         let k = slope * slope;
-        let equation = AxisQuadric {
-            frame,
-            square: DVec3::new(1.0, -k, 1.0),
-            linear_y: 0.0,
-            constant: 0.0,
-            rule: RootRule::FirstPositiveWithin {
-                low: 0.0,
-                high: height,
-            },
-        };
-        Ok(Cone {
-            equation,
-            radius,
-            height,
-            k,
-        })
-    }
-
-    /// a = dx² + dz² - k dy², b = 2(bx dx + bz dz - k by dy), c = bx² + bz² - k by²;
-    /// smallest positive root with 0 <= y <= h. Along a generator a = 0 (linear case).
-    #[inline]
-    pub fn hit(&self, ray: &Ray) -> Option<f64> {
-        Accurate::axis_quadric(&self.equation, ray)
-    }
-
-    /// Local normal (2x, -2k y, 2z), turned back by `irot`; zero at the apex.
-    #[inline]
-    pub fn normal(&self, point: DVec3) -> DVec3 {
-        self.equation.normal(point)
+        let rule = RootRule::within(0.0, size.height);
+        let equation = AxisQuadric::new(frame, -k, 0.0, 0.0, rule);
+        Ok(Cone { equation, size, k })
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::shapes::Ray;
+    use crate::shapes::kernel::Accurate;
 
     fn cone() -> Cone {
         // Apex at the origin, opening up +y, radius 1 at height 1: x² + z² = y², k = 1.
@@ -81,12 +58,9 @@ mod tests {
 
     #[test]
     fn horizontal_ray_hits_where_the_radius_equals_the_height() {
-        let ray = Ray {
-            base: DVec3::new(-3.0, 0.5, 0.0),
-            dir: DVec3::X,
-        };
-        assert_eq!(cone().hit(&ray), Some(2.5));
-        let n = cone().normal(DVec3::new(-0.5, 0.5, 0.0));
+        let ray = Ray::new(DVec3::new(-3.0, 0.5, 0.0), DVec3::X);
+        assert_eq!(cone().equation.hit::<Accurate>(&ray), Some(2.5));
+        let n = cone().equation.normal(DVec3::new(-0.5, 0.5, 0.0));
         let expected = DVec3::new(-1.0, -1.0, 0.0) / 2f64.sqrt();
         assert!((n - expected).length() < 1e-15, "{n}");
     }
@@ -101,16 +75,13 @@ mod tests {
         };
         // Then b = 2(bx dx - k by dy) = -√2 and c = bx² = 1, so t = -c/b = 1/√2: the point
         // (-0.5, 0.5, 0) of the generator x = -y.
-        let t = cone().hit(&ray).unwrap();
+        let t = cone().equation.hit::<Accurate>(&ray).unwrap();
         assert!((t - 0.5f64.sqrt()).abs() < 1e-15, "{t}");
     }
 
     #[test]
     fn the_lower_nappe_is_out_of_bounds() {
-        let ray = Ray {
-            base: DVec3::new(-3.0, -0.5, 0.0),
-            dir: DVec3::X,
-        };
-        assert_eq!(cone().hit(&ray), None);
+        let ray = Ray::new(DVec3::new(-3.0, -0.5, 0.0), DVec3::X);
+        assert_eq!(cone().equation.hit::<Accurate>(&ray), None);
     }
 }

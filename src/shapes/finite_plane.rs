@@ -12,9 +12,8 @@
 //! 7 3           size (width height)
 //! ```
 
-use super::kernel::{Accurate, Kernel};
-use super::{Invalid, PlaneFrame, Ray, positive};
-use crate::scene_file::layout::label;
+use super::kernel::Kernel;
+use super::{Invalid, Parameter, PlaneFrame, Ray, positive};
 use glam::{DVec2, DVec3};
 
 /// A rectangle [0, width] x [0, height] of a plane frame, edges included.
@@ -36,31 +35,26 @@ impl FinitePlane {
         record: &'static str,
     ) -> Result<FinitePlane, Invalid> {
         let frame = PlaneFrame::new(normal, point, xdir, record)?;
-        positive(record, "width", label::SIZE, 0, size.x)?;
-        positive(record, "height", label::SIZE, 1, size.y)?;
+        positive(record, "width", size.x).map_err(Parameter::Width.refuses())?;
+        positive(record, "height", size.y).map_err(Parameter::Height.refuses())?;
         Ok(FinitePlane { frame, size })
     }
 
     /// The box around the rectangle's four corners.
     pub fn bounds(&self) -> (DVec3, DVec3) {
         let origin = self.frame.plane.point;
-        let x = self.frame.rot.row(0) * self.size.x;
-        let y = self.frame.rot.row(1) * self.size.y;
+        let x = self.frame.local_from_world.row(0) * self.size.x;
+        let y = self.frame.local_from_world.row(1) * self.size.y;
         let corners = [origin, origin + x, origin + y, origin + x + y];
         let min = corners.into_iter().fold(DVec3::INFINITY, DVec3::min);
         let max = corners.into_iter().fold(DVec3::NEG_INFINITY, DVec3::max);
         (min, max)
     }
 
-    /// The plane's hit, if q = rot (H - point) lies in the rectangle.
-    #[inline]
-    pub fn hit(&self, ray: &Ray) -> Option<f64> {
-        self.hit_with::<Accurate>(ray)
-    }
-
-    /// [`FinitePlane::hit`] with the plane's t from kernel `K`.
-    #[inline]
-    pub fn hit_with<K: Kernel>(&self, ray: &Ray) -> Option<f64> {
+    /// The plane's hit (spec §5.1) with kernel `K`, if q = rot (H - point) lies in the
+    /// rectangle, edges included (spec §5.3).
+    #[inline(always)]
+    pub fn hit<K: Kernel>(&self, ray: &Ray) -> Option<f64> {
         let t = K::plane(&self.frame.plane, ray)?;
         let q = self.frame.plane_xy(ray.base + t * ray.dir);
         let inside = (0.0..=self.size.x).contains(&q.x) && (0.0..=self.size.y).contains(&q.y);
@@ -71,6 +65,7 @@ impl FinitePlane {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::shapes::kernel::Accurate;
 
     #[test]
     fn hits_inside_the_rectangle_and_on_its_edge_only() {
@@ -82,14 +77,11 @@ mod tests {
             "finite plane",
         )
         .unwrap();
-        let towards = |x: f64, y: f64| Ray {
-            base: DVec3::new(x, y, 0.0),
-            dir: DVec3::NEG_Z,
-        };
-        assert_eq!(plane.hit(&towards(0.0, -0.5)), Some(4.0));
-        assert_eq!(plane.hit(&towards(1.0, 0.0)), Some(4.0));
-        assert_eq!(plane.hit(&towards(1.5, -0.5)), None);
-        assert_eq!(plane.hit(&towards(0.0, 0.5)), None);
+        let towards = |x: f64, y: f64| Ray::new(DVec3::new(x, y, 0.0), DVec3::NEG_Z);
+        assert_eq!(plane.hit::<Accurate>(&towards(0.0, -0.5)), Some(4.0));
+        assert_eq!(plane.hit::<Accurate>(&towards(1.0, 0.0)), Some(4.0));
+        assert_eq!(plane.hit::<Accurate>(&towards(1.5, -0.5)), None);
+        assert_eq!(plane.hit::<Accurate>(&towards(0.0, 0.5)), None);
     }
 
     #[test]
@@ -103,7 +95,7 @@ mod tests {
                 "finite plane",
             )
         };
-        assert_eq!(make(0.0, 1.0).unwrap_err().index, 0);
-        assert_eq!(make(1.0, -1.0).unwrap_err().index, 1);
+        assert_eq!(make(0.0, 1.0).unwrap_err().parameter, Parameter::Width);
+        assert_eq!(make(1.0, -1.0).unwrap_err().parameter, Parameter::Height);
     }
 }

@@ -13,11 +13,14 @@
 //! ```
 //! Local frame: axis +y, waist centre at the origin; x² + z² = k y² + rc² with
 //! k = (r² - rc²)/h², -h <= y <= h.
+//!
+//! Its hit is note 003's algorithm, [`AxisQuadric::hit`], on the hyperboloid's row:
+//! a = dx² + dz² - k dy², b = 2(bx dx + bz dz - k by dy), c = bx² + bz² - k by² - rc²,
+//! the smallest positive root with -h <= y <= h. Its normal ([`AxisQuadric::normal`]) is
+//! the local (2x, -2k y, 2z), turned back by `irot`.
 
-use super::kernel::{Accurate, Kernel};
-use super::{AxisFrame, AxisQuadric, Invalid, Ray, RootRule, positive};
+use super::{AxisQuadric, Invalid, Parameter, RootRule, Size};
 use crate::error::MeaningError;
-use crate::scene_file::layout::label;
 use glam::DVec3;
 
 /// A hyperboloid with its frame, k and rc² precomputed.
@@ -26,20 +29,17 @@ pub struct Hyperboloid {
     /// x² - k y² + z² - rc² = 0 for -h <= y <= h, with the frame (waist centre, `rotmat`,
     /// `irot`).
     pub equation: AxisQuadric,
-    /// Radius at y = ±h, > 0.
-    pub radius: f64,
-    /// Half-height h, > 0.
-    pub half_height: f64,
+    /// Radius at y = ±h, and the half-height h.
+    pub size: Size,
     /// Waist radius rc, >= 0.
     pub waist: f64,
     /// k = (r² - rc²)/h² (negative when the waist is wider than the ends).
     pub k: f64,
-    /// rc².
-    pub waist_sq: f64,
 }
 
 impl Hyperboloid {
-    /// Validates the radii and half-height, builds the frame and k.
+    /// Validates the radii and half-height, builds the frame and k:
+    /// x² - k y² + z² - rc² = 0 for -h <= y <= h.
     pub fn new(
         centre: DVec3,
         centre_line: DVec3,
@@ -47,61 +47,31 @@ impl Hyperboloid {
         half_height: f64,
         waist: f64,
     ) -> Result<Self, Invalid> {
-        const RECORD: &str = "hyperboloid";
-        let frame = AxisFrame::new(centre, centre_line, RECORD)?;
-        let r = positive(RECORD, "radius", label::END_RADIUS_HALF_HEIGHT, 0, radius)?;
-        let h = positive(
-            RECORD,
-            "half-height",
-            label::END_RADIUS_HALF_HEIGHT,
-            1,
-            half_height,
-        )?;
+        let record = "hyperboloid";
+        let measures = (radius, half_height);
+        let (frame, size) =
+            AxisQuadric::measure(record, centre, centre_line, measures, "half-height")?;
         if waist < 0.0 {
             let error = MeaningError::NegativeWaist { value: waist };
-            let (label, index) = (label::WAIST_RADIUS, 0);
-            return Err(Invalid {
-                label,
-                index,
-                error,
-            });
+            return Err(Parameter::Waist.refuses()(error));
         }
+        let (r, h) = (size.radius, size.height);
         let k = (r * r - waist * waist) / (h * h);
-        let waist_sq = waist * waist;
-        let equation = AxisQuadric {
-            frame,
-            square: DVec3::new(1.0, -k, 1.0),
-            linear_y: 0.0,
-            constant: -waist_sq,
-            rule: RootRule::FirstPositiveWithin { low: -h, high: h },
-        };
+        let equation = AxisQuadric::new(frame, -k, 0.0, -(waist * waist), RootRule::within(-h, h));
         Ok(Hyperboloid {
             equation,
-            radius: r,
-            half_height: h,
+            size,
             waist,
             k,
-            waist_sq,
         })
-    }
-
-    /// a = dx² + dz² - k dy², b = 2(bx dx + bz dz - k by dy), c = bx² + bz² - k by² - rc²;
-    /// smallest positive root with -h <= y <= h.
-    #[inline]
-    pub fn hit(&self, ray: &Ray) -> Option<f64> {
-        Accurate::axis_quadric(&self.equation, ray)
-    }
-
-    /// Local normal (2x, -2k y, 2z), turned back by `irot`.
-    #[inline]
-    pub fn normal(&self, point: DVec3) -> DVec3 {
-        self.equation.normal(point)
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::shapes::Ray;
+    use crate::shapes::kernel::Accurate;
 
     fn hyperboloid() -> Hyperboloid {
         // Ends of radius √2 at y = ±1, waist 1: k = (2 - 1)/1 = 1, x² + z² = y² + 1.
@@ -110,36 +80,27 @@ mod tests {
 
     #[test]
     fn waist_is_hit_at_its_radius() {
-        let ray = Ray {
-            base: DVec3::new(-4.0, 0.0, 0.0),
-            dir: DVec3::X,
-        };
-        assert_eq!(hyperboloid().hit(&ray), Some(3.0));
+        let ray = Ray::new(DVec3::new(-4.0, 0.0, 0.0), DVec3::X);
+        assert_eq!(hyperboloid().equation.hit::<Accurate>(&ray), Some(3.0));
         assert_eq!(
-            hyperboloid().normal(DVec3::new(-1.0, 0.0, 0.0)),
+            hyperboloid().equation.normal(DVec3::new(-1.0, 0.0, 0.0)),
             DVec3::NEG_X
         );
     }
 
     #[test]
     fn at_height_one_the_radius_is_root_two_and_beyond_the_ends_it_misses() {
-        let ray = Ray {
-            base: DVec3::new(-4.0, -1.0, 0.0),
-            dir: DVec3::X,
-        };
-        let t = hyperboloid().hit(&ray).unwrap();
+        let ray = Ray::new(DVec3::new(-4.0, -1.0, 0.0), DVec3::X);
+        let t = hyperboloid().equation.hit::<Accurate>(&ray).unwrap();
         assert!((t - (4.0 - 2f64.sqrt())).abs() < 1e-15, "{t}");
-        let beyond = Ray {
-            base: DVec3::new(-4.0, 1.5, 0.0),
-            dir: DVec3::X,
-        };
-        assert_eq!(hyperboloid().hit(&beyond), None);
+        let beyond = Ray::new(DVec3::new(-4.0, 1.5, 0.0), DVec3::X);
+        assert_eq!(hyperboloid().equation.hit::<Accurate>(&beyond), None);
     }
 
     #[test]
     fn negative_waist_is_an_error_and_zero_is_a_double_cone() {
         let error = Hyperboloid::new(DVec3::ZERO, DVec3::Y, 1.0, 1.0, -0.5).unwrap_err();
-        assert_eq!(error.label, label::WAIST_RADIUS);
+        assert_eq!(error.parameter, Parameter::Waist);
         let cone = Hyperboloid::new(DVec3::ZERO, DVec3::Y, 1.0, 1.0, 0.0).unwrap();
         assert_eq!(cone.k, 1.0);
     }

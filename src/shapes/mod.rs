@@ -9,19 +9,17 @@ mod axis_frame;
 mod axis_quadric;
 mod cone;
 mod cylinder;
-pub mod dd;
 mod finite_plane;
 mod hyperboloid;
 pub mod kernel;
 mod paraboloid;
 mod plane;
 mod plane_frame;
-mod quadratic;
-mod quadric;
+pub(crate) mod quadric;
 mod sphere;
 
 pub use axis_frame::AxisFrame;
-pub use axis_quadric::{AxisQuadric, RootRule};
+pub use axis_quadric::{AxisQuadric, RootRule, Size};
 pub use cone::Cone;
 pub use cylinder::Cylinder;
 pub use finite_plane::FinitePlane;
@@ -29,8 +27,7 @@ pub use hyperboloid::Hyperboloid;
 pub use paraboloid::Paraboloid;
 pub use plane::Plane;
 pub use plane_frame::PlaneFrame;
-pub use quadratic::{Roots, solve_quadratic, solve_quadratic_with_slope};
-pub use quadric::{Centred, Quadric};
+pub use quadric::Quadric;
 pub use sphere::Sphere;
 
 use crate::error::MeaningError;
@@ -46,40 +43,83 @@ pub struct Ray {
     pub dir: DVec3,
 }
 
-/// A validation failure in a constructor: which group (by its label in
-/// [`crate::scene_file::layout::label`]), which number of it, and what is wrong.
+impl Ray {
+    /// The ray from `base` along the unit direction `dir`.
+    pub fn new(base: DVec3, dir: DVec3) -> Ray {
+        Ray { base, dir }
+    }
+}
+
+/// A number a shape's constructor can refuse. Shapes know nothing of the scene file:
+/// `src/scene/build.rs` maps a parameter to the group and column it came from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Parameter {
+    /// A plane's normal.
+    Normal,
+    /// A framed plane's x direction.
+    XDirection,
+    /// A quadric's centre line (its axis).
+    CentreLine,
+    /// A radius (a sphere's; a quadric's at its open end).
+    Radius,
+    /// A quadric's height (half-height for the hyperboloid), or a finite plane's height.
+    Height,
+    /// A finite plane's width.
+    Width,
+    /// The hyperboloid's waist radius.
+    Waist,
+    /// The `QUADRIC` coefficients, as a whole.
+    Coefficients,
+}
+
+impl Parameter {
+    /// A refusal of this parameter, for `map_err`.
+    pub(crate) fn refuses(self) -> impl Fn(MeaningError) -> Invalid {
+        move |error| Invalid {
+            parameter: self,
+            error,
+        }
+    }
+
+    /// How the parameter is named in messages.
+    pub fn name(self) -> &'static str {
+        match self {
+            Parameter::Normal => "normal",
+            Parameter::XDirection => "x direction",
+            Parameter::CentreLine => "centre line",
+            Parameter::Radius => "radius",
+            Parameter::Height => "height",
+            Parameter::Width => "width",
+            Parameter::Waist => "waist radius",
+            Parameter::Coefficients => "coefficients",
+        }
+    }
+}
+
+/// A constructor's refusal: the parameter and what is wrong with it; no location.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Invalid {
-    /// The label of the offending group.
-    pub label: &'static str,
-    /// 0-based index of the offending number in the group.
-    pub index: usize,
+    /// The offending parameter.
+    pub parameter: Parameter,
     /// The problem.
     pub error: MeaningError,
 }
 
-/// Fails with `NotPositive` unless `value > 0`.
+/// Fails with `NotPositive` unless `value > 0`; `what` names the quantity in the message
+/// ("radius", "half-height").
 pub(crate) fn positive(
     record: &'static str,
     what: &'static str,
-    label: &'static str,
-    index: usize,
     value: f64,
-) -> Result<f64, Invalid> {
+) -> Result<f64, MeaningError> {
     if value > 0.0 {
-        Ok(value)
-    } else {
-        let error = MeaningError::NotPositive {
-            record,
-            what,
-            value,
-        };
-        Err(Invalid {
-            label,
-            index,
-            error,
-        })
+        return Ok(value);
     }
+    Err(MeaningError::NotPositive {
+        record,
+        what,
+        value,
+    })
 }
 
 /// `v / |v|` computed without overflow or underflow in `|v|`; `None` for the zero vector.
@@ -96,16 +136,11 @@ pub fn unit(v: DVec3) -> Option<DVec3> {
 pub(crate) fn unit_or_zero_error(
     v: DVec3,
     record: &'static str,
-    label: &'static str,
+    parameter: Parameter,
 ) -> Result<DVec3, Invalid> {
-    unit(v).ok_or(Invalid {
-        label,
-        index: 0,
-        error: MeaningError::ZeroVector {
-            record,
-            what: label,
-        },
-    })
+    let what = parameter.name();
+    let error = MeaningError::ZeroVector { record, what };
+    unit(v).ok_or(Invalid { parameter, error })
 }
 
 /// Where a ray meets a shape, for shading.
@@ -129,7 +164,7 @@ pub enum Shape {
     /// 15 and 17: a rectangle of a plane.
     FinitePlane(FinitePlane),
     /// 16: an infinite plane with a frame for the tile grid.
-    FramedPlane(PlaneFrame),
+    TiledPlane(PlaneFrame),
     /// 21: a finite circular paraboloid.
     Paraboloid(Paraboloid),
     /// 22: a finite open cylinder.
@@ -156,8 +191,8 @@ impl Shape {
         match self {
             Shape::Sphere(s) => K::axis_quadric(&s.equation, ray),
             Shape::Plane(s) => K::plane(s, ray),
-            Shape::FinitePlane(s) => s.hit_with::<K>(ray),
-            Shape::FramedPlane(s) => K::plane(&s.plane, ray),
+            Shape::FinitePlane(s) => s.hit::<K>(ray),
+            Shape::TiledPlane(s) => K::plane(&s.plane, ray),
             Shape::Paraboloid(s) => K::axis_quadric(&s.equation, ray),
             Shape::Cylinder(s) => K::axis_quadric(&s.equation, ray),
             Shape::Cone(s) => K::axis_quadric(&s.equation, ray),
@@ -176,7 +211,7 @@ impl Shape {
             Shape::Cone(s) => s.equation.bounds(),
             Shape::Hyperboloid(s) => s.equation.bounds(),
             Shape::FinitePlane(s) => Some(s.bounds()),
-            Shape::Plane(_) | Shape::FramedPlane(_) | Shape::Quadric(_) => None,
+            Shape::Plane(_) | Shape::TiledPlane(_) | Shape::Quadric(_) => None,
         }
     }
 
@@ -184,14 +219,14 @@ impl Shape {
     pub fn surface(&self, ray: &Ray, t: f64) -> Surface {
         let point = ray.base + t * ray.dir;
         let (normal, plane_xy) = match self {
-            Shape::Sphere(s) => (s.normal(point), glam::DVec2::ZERO),
+            Shape::Sphere(s) => (s.equation.normal(point), glam::DVec2::ZERO),
             Shape::Plane(s) => (s.normal, glam::DVec2::ZERO),
             Shape::FinitePlane(s) => (s.frame.plane.normal, s.frame.plane_xy(point)),
-            Shape::FramedPlane(s) => (s.plane.normal, s.plane_xy(point)),
-            Shape::Paraboloid(s) => (s.normal(point), glam::DVec2::ZERO),
-            Shape::Cylinder(s) => (s.normal(point), glam::DVec2::ZERO),
-            Shape::Cone(s) => (s.normal(point), glam::DVec2::ZERO),
-            Shape::Hyperboloid(s) => (s.normal(point), glam::DVec2::ZERO),
+            Shape::TiledPlane(s) => (s.plane.normal, s.plane_xy(point)),
+            Shape::Paraboloid(s) => (s.equation.normal(point), glam::DVec2::ZERO),
+            Shape::Cylinder(s) => (s.equation.normal(point), glam::DVec2::ZERO),
+            Shape::Cone(s) => (s.equation.normal(point), glam::DVec2::ZERO),
+            Shape::Hyperboloid(s) => (s.equation.normal(point), glam::DVec2::ZERO),
             Shape::Quadric(s) => (s.normal(point), glam::DVec2::ZERO),
         };
         // A zero gradient (a cone's apex, a degenerate quadric) has no direction; face the

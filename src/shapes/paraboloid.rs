@@ -10,10 +10,13 @@
 //! 2 5           radius at the top and height
 //! ```
 //! Local frame: axis +y, vertex at the origin; surface x² + z² = k y with k = r²/h.
+//!
+//! Its hit is note 003's algorithm, [`AxisQuadric::hit`], on the paraboloid's row:
+//! a = dx² + dz², b = 2(bx dx + bz dz) - k dy, c = bx² + bz² - k by, the smallest
+//! positive root with 0 <= y <= h; along the axis a = 0 and the equation is linear. Its
+//! normal ([`AxisQuadric::normal`]) is the local (2x, -k, 2z), turned back by `irot`.
 
-use super::kernel::{Accurate, Kernel};
-use super::{AxisFrame, AxisQuadric, Invalid, Ray, RootRule, positive};
-use crate::scene_file::layout::label;
+use super::{AxisQuadric, Invalid, RootRule, Size};
 use glam::DVec3;
 
 /// A paraboloid with its frame and scale k = r²/h.
@@ -21,62 +24,40 @@ use glam::DVec3;
 pub struct Paraboloid {
     /// x² + z² - k y = 0 for 0 <= y <= h, with the frame (vertex, `rotmat`, `irot`).
     pub equation: AxisQuadric,
-    /// Radius at y = h, > 0.
-    pub radius: f64,
-    /// Height, > 0.
-    pub height: f64,
+    /// Radius at y = h, and height.
+    pub size: Size,
     /// k = r²/h (note 003's `parab->scale`).
     pub k: f64,
 }
 
 impl Paraboloid {
-    /// Validates radius and height, builds the frame and k.
+    /// Validates radius and height, builds the frame and k: x² + z² - k y = 0 for
+    /// 0 <= y <= h.
     pub fn new(
         vertex: DVec3,
         centre_line: DVec3,
         radius: f64,
         height: f64,
     ) -> Result<Self, Invalid> {
-        const RECORD: &str = "paraboloid";
-        let frame = AxisFrame::new(vertex, centre_line, RECORD)?;
-        let radius = positive(RECORD, "radius", label::RADIUS_HEIGHT, 0, radius)?;
-        let height = positive(RECORD, "height", label::RADIUS_HEIGHT, 1, height)?;
-        let k = radius * radius / height;
-        let equation = AxisQuadric {
-            frame,
-            square: DVec3::new(1.0, 0.0, 1.0),
-            linear_y: -k,
-            constant: 0.0,
-            rule: RootRule::FirstPositiveWithin {
-                low: 0.0,
-                high: height,
-            },
-        };
-        Ok(Paraboloid {
-            equation,
-            radius,
-            height,
-            k,
-        })
-    }
-
-    /// a = dx² + dz², b = 2(bx dx + bz dz) - k dy, c = bx² + bz² - k by; smallest positive
-    /// root with 0 <= y <= h. Along the axis a = 0 and the equation is linear.
-    #[inline]
-    pub fn hit(&self, ray: &Ray) -> Option<f64> {
-        Accurate::axis_quadric(&self.equation, ray)
-    }
-
-    /// Local normal (2x, -k, 2z), turned back by `irot`.
-    #[inline]
-    pub fn normal(&self, point: DVec3) -> DVec3 {
-        self.equation.normal(point)
+        let (frame, size) = AxisQuadric::measure(
+            "paraboloid",
+            vertex,
+            centre_line,
+            (radius, height),
+            "height",
+        )?;
+        let k = size.radius * size.radius / size.height;
+        let rule = RootRule::within(0.0, size.height);
+        let equation = AxisQuadric::new(frame, 0.0, -k, 0.0, rule);
+        Ok(Paraboloid { equation, size, k })
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::shapes::Ray;
+    use crate::shapes::kernel::Accurate;
 
     fn bowl() -> Paraboloid {
         // Vertex at the origin opening up +y: k = 4 / 4 = 1, so x² + z² = y.
@@ -90,28 +71,19 @@ mod tests {
 
     #[test]
     fn ray_down_the_axis_meets_the_vertex_through_the_linear_case() {
-        let ray = Ray {
-            base: DVec3::new(0.0, 3.0, 0.0),
-            dir: DVec3::NEG_Y,
-        };
-        assert_eq!(bowl().hit(&ray), Some(3.0));
-        let normal = bowl().normal(DVec3::ZERO);
+        let ray = Ray::new(DVec3::new(0.0, 3.0, 0.0), DVec3::NEG_Y);
+        assert_eq!(bowl().equation.hit::<Accurate>(&ray), Some(3.0));
+        let normal = bowl().equation.normal(DVec3::ZERO);
         assert_eq!(normal, DVec3::NEG_Y);
     }
 
     #[test]
     fn horizontal_ray_hits_where_x_squared_is_y() {
         // At y = 1 the radius is 1: from x = -5 the wall is 4 away.
-        let ray = Ray {
-            base: DVec3::new(-5.0, 1.0, 0.0),
-            dir: DVec3::X,
-        };
-        assert_eq!(bowl().hit(&ray), Some(4.0));
+        let ray = Ray::new(DVec3::new(-5.0, 1.0, 0.0), DVec3::X);
+        assert_eq!(bowl().equation.hit::<Accurate>(&ray), Some(4.0));
         // Above the rim (y = 4.5 > h) it misses.
-        let high = Ray {
-            base: DVec3::new(-5.0, 4.5, 0.0),
-            dir: DVec3::X,
-        };
-        assert_eq!(bowl().hit(&high), None);
+        let high = Ray::new(DVec3::new(-5.0, 4.5, 0.0), DVec3::X);
+        assert_eq!(bowl().equation.hit::<Accurate>(&high), None);
     }
 }

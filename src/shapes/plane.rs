@@ -10,9 +10,8 @@
 //! ```
 //! (code 20, the procedural plane, adds a shader index line).
 
-use super::kernel::{Accurate, Kernel};
-use super::{Invalid, Ray, unit_or_zero_error};
-use crate::scene_file::layout::label;
+use super::kernel::Kernel;
+use super::{Invalid, Parameter, Ray, unit_or_zero_error};
 use glam::DVec3;
 
 /// A plane through `point` with unit `normal`, used as given (never flipped, spec §4.4).
@@ -27,20 +26,26 @@ pub struct Plane {
 impl Plane {
     /// Normalises the normal; a zero normal is an error.
     pub fn new(normal: DVec3, point: DVec3, record: &'static str) -> Result<Plane, Invalid> {
-        let normal = unit_or_zero_error(normal, record, label::NORMAL)?;
+        let normal = unit_or_zero_error(normal, record, Parameter::Normal)?;
         Ok(Plane { normal, point })
     }
 
-    /// t = N·(Q - B) / N·D; a miss when N·D = 0, t < 0, or the hit has z > 0 (spec §5.1).
-    #[inline]
-    pub fn hit(&self, ray: &Ray) -> Option<f64> {
-        Accurate::plane(self, ray)
+    /// Where `ray` meets the plane (spec §5.1), with kernel `K` computing t: a miss when
+    /// N·D = 0, t < 0, or the hit has z > 0.
+    #[inline(always)]
+    pub fn hit<K: Kernel>(&self, ray: &Ray) -> Option<f64> {
+        // t = (N·Q - N·B) / N·D, a miss where N·D = 0.
+        let t = K::plane_distance(self, ray)?;
+        // Behind the base, or beyond the screen (z > 0), for every ray (spec §5.1).
+        let z = ray.base.z + t * ray.dir.z;
+        (t >= 0.0 && (z <= 0.0 || z <= K::screen_slack(ray, t))).then_some(t)
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::shapes::kernel::Accurate;
 
     #[test]
     fn ray_hits_the_floor_at_the_distance_of_the_formula() {
@@ -57,7 +62,7 @@ mod tests {
             dir,
         };
         // Descending 4 units at 0.6 per unit length takes t = 4 / 0.6.
-        let t = plane.hit(&ray).unwrap();
+        let t = plane.hit::<Accurate>(&ray).unwrap();
         assert!((t - 4.0 / 0.6).abs() < 1e-14, "{t}");
     }
 
@@ -68,12 +73,12 @@ mod tests {
             base: DVec3::new(0.0, 0.0, 3.0),
             dir,
         };
-        assert_eq!(wall.hit(&from_eye(DVec3::X)), None);
-        assert_eq!(wall.hit(&from_eye(DVec3::Z)), None);
+        assert_eq!(wall.hit::<Accurate>(&from_eye(DVec3::X)), None);
+        assert_eq!(wall.hit::<Accurate>(&from_eye(DVec3::Z)), None);
         // A plane z = 1 lies between the eye and the screen: its hits have z > 0.
         let near = Plane::new(DVec3::Z, DVec3::new(0.0, 0.0, 1.0), "plane").unwrap();
-        assert_eq!(near.hit(&from_eye(DVec3::NEG_Z)), None);
-        assert_eq!(wall.hit(&from_eye(DVec3::NEG_Z)), Some(8.0));
+        assert_eq!(near.hit::<Accurate>(&from_eye(DVec3::NEG_Z)), None);
+        assert_eq!(wall.hit::<Accurate>(&from_eye(DVec3::NEG_Z)), Some(8.0));
     }
 
     #[test]

@@ -2,9 +2,8 @@
 //! x the x direction projected into the plane. `q = rot (H - point)` gives in-plane
 //! coordinates of a hit.
 
-use super::{Invalid, Plane, unit, unit_or_zero_error};
+use super::{Invalid, Parameter, Plane, unit, unit_or_zero_error};
 use crate::error::MeaningError;
-use crate::scene_file::layout::label;
 use glam::{DMat3, DVec2, DVec3};
 
 /// An infinite plane with an in-plane coordinate frame.
@@ -13,7 +12,7 @@ pub struct PlaneFrame {
     /// The plane (unit normal, point = the frame's origin, the lower-left corner).
     pub plane: Plane,
     /// Rows: unit x direction in the plane, n × x, n.
-    pub rot: DMat3,
+    pub local_from_world: DMat3,
 }
 
 impl PlaneFrame {
@@ -27,13 +26,12 @@ impl PlaneFrame {
     ) -> Result<PlaneFrame, Invalid> {
         let plane = Plane::new(normal, point, record)?;
         let n = plane.normal;
-        let x = unit_or_zero_error(xdir, record, label::XDIR)?;
+        let x = unit_or_zero_error(xdir, record, Parameter::XDirection)?;
         let in_plane = x - n.dot(x) * n;
         // |in_plane| is the sine of the angle between x and n; below 1e-12 the direction
         // in the plane is rounding noise, so the pair is treated as parallel.
         let parallel = Invalid {
-            label: label::XDIR,
-            index: 0,
+            parameter: Parameter::XDirection,
             error: MeaningError::XdirParallel { record },
         };
         if in_plane.length() < 1e-12 {
@@ -41,13 +39,16 @@ impl PlaneFrame {
         }
         let x = unit(in_plane).ok_or(parallel)?;
         let rot = DMat3::from_cols(x, n.cross(x), n).transpose();
-        Ok(PlaneFrame { plane, rot })
+        Ok(PlaneFrame {
+            plane,
+            local_from_world: rot,
+        })
     }
 
     /// (q.x, q.y) of a point of the plane.
     #[inline]
     pub fn plane_xy(&self, point: DVec3) -> DVec2 {
-        (self.rot * (point - self.plane.point)).truncate()
+        (self.local_from_world * (point - self.plane.point)).truncate()
     }
 }
 
@@ -76,7 +77,7 @@ mod tests {
     #[test]
     fn x_direction_along_the_normal_is_an_error() {
         let error = PlaneFrame::new(DVec3::Z, DVec3::ZERO, DVec3::new(0.0, 0.0, -2.0), "p");
-        assert_eq!(error.unwrap_err().label, label::XDIR);
+        assert_eq!(error.unwrap_err().parameter, Parameter::XDirection);
         assert!(PlaneFrame::new(DVec3::Z, DVec3::ZERO, DVec3::ZERO, "p").is_err());
     }
 }

@@ -8,11 +8,10 @@
 //! ```
 //! The coefficients fill the symmetric matrix Q = [A B C D; B E F G; C F H I; D G I J].
 
-use super::dd::{Dd, two_prod};
-use super::kernel::{Accurate, Kernel};
-use super::{Invalid, Ray, unit};
+use super::kernel::dd::{Dd, two_prod};
+use super::kernel::{Kernel, Steps, Tangent};
+use super::{Invalid, Parameter, Ray, unit};
 use crate::error::MeaningError;
-use crate::scene_file::layout::label;
 use glam::{DMat3, DMat4, DVec3, DVec4};
 
 /// A general quadric surface, unbounded unless the quadric itself is closed.
@@ -23,7 +22,7 @@ pub struct Quadric {
     /// The symmetric 4x4 matrix Q.
     pub q: DMat4,
     /// The same equation about a point near its centre, for the accurate kernel.
-    pub centred: Centred,
+    pub(crate) centred: Centred,
 }
 
 /// f(x) = xᵀMx + 2 dᵀx + J rewritten about an anchor point x0, so that a ray near the
@@ -37,13 +36,13 @@ pub struct Quadric {
 /// the least-squares sense: a point on a cylinder's axis, a paraboloid's vertex plane.
 /// g0 and f0 are computed in double-double and rounded once.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Centred {
+pub(crate) struct Centred {
     /// x0.
     pub anchor: DVec3,
     /// M, the upper-left 3x3 block of Q.
-    pub m: DMat3,
+    pub second_order: DMat3,
     /// |M|, element by element, for error estimates.
-    pub m_abs: DMat3,
+    pub second_order_abs: DMat3,
     /// g0 = M x0 + d.
     pub gradient: DVec3,
     /// f0 = f(x0).
@@ -83,8 +82,8 @@ impl Centred {
         });
         Centred {
             anchor,
-            m,
-            m_abs: m.abs(),
+            second_order: m,
+            second_order_abs: m.abs(),
             gradient: DVec3::new(g0[0].value(), g0[1].value(), g0[2].value()),
             value: f0.value(),
         }
@@ -95,12 +94,8 @@ impl Quadric {
     /// Builds Q; all ten coefficients zero is an error.
     pub fn new(coefficients: [f64; 10]) -> Result<Quadric, Invalid> {
         if coefficients.iter().all(|&c| c == 0.0) {
-            let (label, index, error) = (label::COEFFICIENTS, 0, MeaningError::ZeroQuadric);
-            return Err(Invalid {
-                label,
-                index,
-                error,
-            });
+            let (parameter, error) = (Parameter::Coefficients, MeaningError::ZeroQuadric);
+            return Err(Invalid { parameter, error });
         }
         let [a, b, c, d, e, f, g, h, i, j] = coefficients;
         let q = DMat4::from_cols(
@@ -118,18 +113,33 @@ impl Quadric {
 
     /// a = dᵀQd, b = 2 dᵀQp, c = pᵀQp with p = (B, 1), d = (D, 0) (note 004).
     #[inline]
-    pub fn coefficients(&self, ray: &Ray) -> (f64, f64, f64) {
-        let p = ray.base.extend(1.0);
-        let d = ray.dir.extend(0.0);
+    pub fn coefficients(&self, base: DVec3, dir: DVec3) -> (f64, f64, f64) {
+        let p = base.extend(1.0);
+        let d = dir.extend(0.0);
         let qp = self.q * p;
         (d.dot(self.q * d), 2.0 * d.dot(qp), p.dot(qp))
     }
 
-    /// The smallest positive root of a t² + b t + c = 0 (a double root counts: a grazing
-    /// ray touches the surface).
-    #[inline]
-    pub fn hit(&self, ray: &Ray) -> Option<f64> {
-        Accurate::quadric(self, ray)
+    /// The smallest positive root along `ray` (spec §3.3; note 004), with kernel `K`
+    /// doing the arithmetic: a, b, c of the quadratic, its roots, and the first in front
+    /// of the base.
+    #[inline(always)]
+    pub fn hit<K: Kernel>(&self, ray: &Ray) -> Option<f64> {
+        // The ray as P = (B, 1) + t (D, 0), moved next to the quadric where the kernel
+        // does that.
+        let local = K::quadric_ray(self, ray);
+        // a = DᵀQD, b = 2 DᵀQP, c = PᵀQP.
+        let abc = K::quadric_coefficients(self, &local);
+        let steps = Steps::new(self, ray, &local, abc);
+        // The smallest positive root (a double root counts: a grazing ray touches).
+        for (index, root) in K::roots(abc, Tangent::Counts)?.into_iter().enumerate() {
+            if let Some(t) = K::quadric_distance(&steps, root, index)
+                && t > 0.0
+            {
+                return Some(t);
+            }
+        }
+        None
     }
 
     /// The gradient (Ax+By+Cz+D, Bx+Ey+Fz+G, Cx+Fy+Hz+I), normalised, not flipped.
@@ -143,6 +153,7 @@ impl Quadric {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::shapes::kernel::Accurate;
 
     #[test]
     fn matrix_form_expands_to_the_scalar_equation_with_2i_z() {
@@ -167,28 +178,19 @@ mod tests {
     #[test]
     fn unit_sphere_as_a_quadric() {
         let sphere = Quadric::new([1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 0.0, -1.0]).unwrap();
-        let ray = Ray {
-            base: DVec3::new(0.0, 0.0, 5.0),
-            dir: DVec3::NEG_Z,
-        };
-        assert_eq!(sphere.hit(&ray), Some(4.0));
+        let ray = Ray::new(DVec3::new(0.0, 0.0, 5.0), DVec3::NEG_Z);
+        assert_eq!(sphere.hit::<Accurate>(&ray), Some(4.0));
         assert_eq!(sphere.normal(DVec3::Z), DVec3::Z);
         // From inside, the far side is hit (unlike code 13).
-        let inside = Ray {
-            base: DVec3::ZERO,
-            dir: DVec3::X,
-        };
-        assert_eq!(sphere.hit(&inside), Some(1.0));
+        let inside = Ray::new(DVec3::ZERO, DVec3::X);
+        assert_eq!(sphere.hit::<Accurate>(&inside), Some(1.0));
     }
 
     #[test]
     fn no_real_points_renders_nothing_and_all_zero_is_an_error() {
         let empty = Quadric::new([1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 0.0, 1.0]).unwrap();
-        let ray = Ray {
-            base: DVec3::new(0.0, 0.0, 5.0),
-            dir: DVec3::NEG_Z,
-        };
-        assert_eq!(empty.hit(&ray), None);
+        let ray = Ray::new(DVec3::new(0.0, 0.0, 5.0), DVec3::NEG_Z);
+        assert_eq!(empty.hit::<Accurate>(&ray), None);
         assert!(Quadric::new([0.0; 10]).is_err());
     }
 }

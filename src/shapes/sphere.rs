@@ -9,10 +9,13 @@
 //! 2             radius
 //! ```
 //! (code 19, the procedural sphere, adds a shader index line).
+//!
+//! Its hit is note 003's algorithm, [`AxisQuadric::hit`], in the sphere's case: the
+//! smaller root of |B - C + tD|² = r², even when negative, if the discriminant is
+//! positive (spec §5.2: a tangent ray misses, a ray from inside finds t <= 0). Its normal
+//! ([`AxisQuadric::normal`]) is the outward unit(P - C).
 
-use super::kernel::{Accurate, Kernel};
-use super::{AxisFrame, AxisQuadric, Invalid, Ray, RootRule, positive};
-use crate::scene_file::layout::label;
+use super::{AxisFrame, AxisQuadric, Invalid, Parameter, RootRule, positive};
 use glam::DVec3;
 
 /// A sphere with its squared radius precomputed.
@@ -29,17 +32,13 @@ pub struct Sphere {
 }
 
 impl Sphere {
-    /// Validates the radius (> 0) and precomputes r².
+    /// Validates the radius (> 0) and precomputes r²: x² + y² + z² - r² = 0 about the
+    /// centre, the nearer root.
     pub fn new(centre: DVec3, radius: f64, record: &'static str) -> Result<Sphere, Invalid> {
-        let radius = positive(record, "radius", label::RADIUS, 0, radius)?;
+        let radius = positive(record, "radius", radius).map_err(Parameter::Radius.refuses())?;
         let radius_sq = radius * radius;
-        let equation = AxisQuadric {
-            frame: AxisFrame::unrotated(centre),
-            square: DVec3::ONE,
-            linear_y: 0.0,
-            constant: -radius_sq,
-            rule: RootRule::Nearer,
-        };
+        let frame = AxisFrame::unrotated(centre);
+        let equation = AxisQuadric::new(frame, 1.0, 0.0, -radius_sq, RootRule::Nearer);
         Ok(Sphere {
             centre,
             radius,
@@ -47,24 +46,13 @@ impl Sphere {
             equation,
         })
     }
-
-    /// The smaller root of |B - C + tD|² = r², even when negative, if the discriminant is
-    /// positive (spec §5.2: a tangent ray misses, a ray from inside finds t <= 0).
-    #[inline]
-    pub fn hit(&self, ray: &Ray) -> Option<f64> {
-        Accurate::axis_quadric(&self.equation, ray)
-    }
-
-    /// Unit outward normal unit(P - C).
-    #[inline]
-    pub fn normal(&self, point: DVec3) -> DVec3 {
-        self.equation.normal(point)
-    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::shapes::Ray;
+    use crate::shapes::kernel::Accurate;
 
     fn sphere() -> Sphere {
         Sphere::new(DVec3::new(0.0, 0.0, -5.0), 2.0, "sphere").unwrap()
@@ -72,35 +60,26 @@ mod tests {
 
     #[test]
     fn ray_through_the_centre_hits_the_near_side() {
-        let ray = Ray {
-            base: DVec3::ZERO,
-            dir: DVec3::NEG_Z,
-        };
-        assert_eq!(sphere().hit(&ray), Some(3.0));
-        assert_eq!(sphere().normal(DVec3::new(0.0, 0.0, -3.0)), DVec3::Z);
+        let ray = Ray::new(DVec3::ZERO, DVec3::NEG_Z);
+        assert_eq!(sphere().equation.hit::<Accurate>(&ray), Some(3.0));
+        assert_eq!(
+            sphere().equation.normal(DVec3::new(0.0, 0.0, -3.0)),
+            DVec3::Z
+        );
     }
 
     #[test]
     fn ray_from_inside_reports_the_negative_root() {
-        let ray = Ray {
-            base: DVec3::new(0.0, 0.0, -5.0),
-            dir: DVec3::X,
-        };
-        assert_eq!(sphere().hit(&ray), Some(-2.0));
+        let ray = Ray::new(DVec3::new(0.0, 0.0, -5.0), DVec3::X);
+        assert_eq!(sphere().equation.hit::<Accurate>(&ray), Some(-2.0));
     }
 
     #[test]
     fn tangent_and_missing_rays_do_not_hit() {
-        let tangent = Ray {
-            base: DVec3::new(2.0, 0.0, 0.0),
-            dir: DVec3::NEG_Z,
-        };
-        let away = Ray {
-            base: DVec3::ZERO,
-            dir: DVec3::Y,
-        };
-        assert_eq!(sphere().hit(&tangent), None);
-        assert_eq!(sphere().hit(&away), None);
+        let tangent = Ray::new(DVec3::new(2.0, 0.0, 0.0), DVec3::NEG_Z);
+        let away = Ray::new(DVec3::ZERO, DVec3::Y);
+        assert_eq!(sphere().equation.hit::<Accurate>(&tangent), None);
+        assert_eq!(sphere().equation.hit::<Accurate>(&away), None);
     }
 
     #[test]

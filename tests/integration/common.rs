@@ -32,14 +32,26 @@ pub fn scene_files(dir: &Path) -> Vec<PathBuf> {
 }
 
 /// The course's scene folder beside the repository, or `None` (with a message) if absent.
+/// Under `CI=true` an absent folder fails the test instead: CI always has it, so a skip
+/// there would hide a broken checkout.
 pub fn course_scenes() -> Option<PathBuf> {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/course-scenes");
     if dir.is_dir() {
-        Some(dir)
-    } else {
-        eprintln!("skipped: {} is absent", dir.display());
-        None
+        return Some(dir);
     }
+    let ci = std::env::var("CI").is_ok_and(|value| value == "true");
+    assert!(!ci, "{} is absent, and CI must have it", dir.display());
+    eprintln!("skipped: {} is absent", dir.display());
+    None
+}
+
+/// The snapshots' settings: short names (no module prefix) and no expression in the
+/// header, so that a snapshot file is named after what it shows.
+pub fn snapshots() -> insta::Settings {
+    let mut settings = insta::Settings::clone_current();
+    settings.set_prepend_module_to_snapshot(false);
+    settings.set_omit_expression(true);
+    settings
 }
 
 /// A reviewable picture of a scene for a snapshot: a 32x24 render as text P3, and the

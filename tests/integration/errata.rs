@@ -38,7 +38,7 @@ fn note_000_ellipsoid_divides_by_the_squared_semi_axes() {
     }
     // The tracer, given the squared form as a QUADRIC, is hit at x = a by a ray down the
     // x axis.
-    let ellipsoid = ellipsoid(a, b, c);
+    let ellipsoid = Shape::Quadric(ellipsoid(a, b, c));
     let t = ellipsoid
         .hit(&ray([10.0, 0.0, 0.0], [-1.0, 0.0, 0.0]))
         .unwrap();
@@ -234,7 +234,7 @@ fn note_003_cone_normal_is_the_gradient() {
     ) / (2.0 * e);
     let formula = DVec3::new(2.0 * p.x, -2.0 * k * p.y, 2.0 * p.z);
     assert!((numeric - formula).length() < 1e-6);
-    assert!((cone.normal(p) - formula.normalize()).length() < 1e-12);
+    assert!((cone.equation.normal(p) - formula.normalize()).length() < 1e-12);
     // The generator through p (from the apex) lies in the surface; the normal is
     // perpendicular to it and the garbled (√x, √y, √z) is not.
     let generator = p.normalize();
@@ -331,7 +331,7 @@ fn note_004_scalar_form_needs_2_i_z() {
 fn note_004_direction_has_w_zero() {
     let sphere = Quadric::new([1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 0.0, -1.0]).unwrap();
     let r = ray([0.0, 0.0, 5.0], [0.0, 0.0, -1.0]);
-    let (a, b, c) = sphere.coefficients(&r);
+    let (a, b, c) = sphere.coefficients(r.base, r.dir);
     assert_eq!((a, b, c), (1.0, -10.0, 24.0)); // (5 - t)² - 1: roots 4 and 6
     let wrong = r.dir.extend(1.0);
     assert_eq!(wrong.dot(sphere.q * wrong), 0.0);

@@ -1,7 +1,7 @@
 //! Every invalid input under `tests/invalid/` is an error that names its line and column,
 //! shows the line with a caret, and leaves standard output empty.
 
-use super::common::{run, scene_files};
+use super::common::{run, scene_files, snapshots};
 use legacy_rt::error::{MeaningError, SceneErrorKind, SyntaxError};
 use std::collections::BTreeSet;
 use std::path::Path;
@@ -21,6 +21,7 @@ fn variant(kind: &SceneErrorKind) -> &'static str {
             SyntaxError::Unsupported { .. } => "Unsupported",
             SyntaxError::QuadricLineShort { .. } => "QuadricLineShort",
             SyntaxError::ByteOrderMark => "ByteOrderMark",
+            SyntaxError::TooManyRecords { .. } => "TooManyRecords",
         },
         SceneErrorKind::Meaning(error) => match error {
             MeaningError::ZeroVector { .. } => "ZeroVector",
@@ -33,33 +34,35 @@ fn variant(kind: &SceneErrorKind) -> &'static str {
             MeaningError::TextureMode { .. } => "TextureMode",
             MeaningError::Texture { .. } => "Texture",
             MeaningError::ZeroQuadric => "ZeroQuadric",
-            MeaningError::TooManyRecords { .. } => "TooManyRecords",
         },
     }
 }
 
 #[test]
 fn every_invalid_input_is_an_error_with_line_column_and_caret() {
-    insta::glob!("../invalid", "*.txt", |path| {
-        let text = std::fs::read_to_string(path).unwrap();
-        let error = legacy_rt::load(&text).expect_err(&format!("{} must not load", path.display()));
-        let shown = error.to_string();
-        let (line, column) = (error.at.line, error.at.column);
-        assert!(shown.contains(&format!("--> line {line}, column {column}")));
-        // The line shown is the file's own line `line` (escaped where it holds control or
-        // invisible characters: `error::tests` checks that form), and a caret follows it.
-        let source_line = text.lines().nth(line - 1).unwrap_or("");
-        assert_eq!(error.at.line_text, source_line.trim_end_matches('\r'));
-        let plain = !source_line.contains(|c: char| c.is_control() || c == '\u{feff}');
-        assert!(
-            !plain || shown.contains(&format!("{line} | {source_line}\n")),
-            "{shown}"
-        );
-        assert!(
-            shown.lines().any(|l| l.trim_end().ends_with('^')),
-            "{shown}"
-        );
-        insta::assert_snapshot!(format!("{text}\n---- error ----\n{shown}"));
+    snapshots().bind(|| {
+        insta::glob!("../invalid", "*.txt", |path| {
+            let text = std::fs::read_to_string(path).unwrap();
+            let error =
+                legacy_rt::load(&text).expect_err(&format!("{} must not load", path.display()));
+            let shown = error.to_string();
+            let (line, column) = (error.at.line, error.at.column);
+            assert!(shown.contains(&format!("--> line {line}, column {column}")));
+            // The line shown is the file's own line `line` (escaped where it holds control or
+            // invisible characters: `error::tests` checks that form), and a caret follows it.
+            let source_line = text.lines().nth(line - 1).unwrap_or("");
+            assert_eq!(error.at.line_text, source_line.trim_end_matches('\r'));
+            let plain = !source_line.contains(|c: char| c.is_control() || c == '\u{feff}');
+            assert!(
+                !plain || shown.contains(&format!("{line} | {source_line}\n")),
+                "{shown}"
+            );
+            assert!(
+                shown.lines().any(|l| l.trim_end().ends_with('^')),
+                "{shown}"
+            );
+            insta::assert_snapshot!("invalid", format!("{text}\n---- error ----\n{shown}"));
+        });
     });
 }
 

@@ -1,20 +1,21 @@
 //! Every scene under `examples/` loads and renders; its `--dump` and its image are locked
 //! down by a snapshot.
 
-use super::common::{image_document, run, scene_files};
+use super::common::{image_document, run, scene_files, snapshots};
 use std::path::Path;
 
 #[test]
 fn every_example_loads_and_its_dump_and_image_are_reviewed() {
-    insta::glob!("../../examples", "*.txt", |path| {
-        let text = std::fs::read_to_string(path).unwrap();
-        let scene = legacy_rt::load(&text)
-            .unwrap_or_else(|error| panic!("{} must load:\n{error}", path.display()));
-        let dump = legacy_rt::dump(&scene);
-        let image = image_document(&scene);
-        insta::assert_snapshot!(format!(
-            "{text}\n---- dump ----\n{dump}\n---- image ----\n{image}"
-        ));
+    snapshots().bind(|| {
+        insta::glob!("../../examples", "*.txt", |path| {
+            let text = std::fs::read_to_string(path).unwrap();
+            let scene = legacy_rt::load(&text)
+                .unwrap_or_else(|error| panic!("{} must load:\n{error}", path.display()));
+            let dump = legacy_rt::dump(&scene);
+            let image = image_document(&scene);
+            let document = format!("{text}\n---- dump ----\n{dump}\n---- image ----\n{image}");
+            insta::assert_snapshot!("example", document);
+        });
     });
 }
 

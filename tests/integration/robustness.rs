@@ -3,7 +3,7 @@
 //! comes out. `PROPTEST_CASES=N` runs longer (issue 12's note quotes a run of 10^6).
 
 use super::common::{course_scenes, scene_files};
-use legacy_rt::error::{MeaningError, SceneErrorKind};
+use legacy_rt::error::{SceneErrorKind, SyntaxError};
 use proptest::prelude::*;
 use std::path::Path;
 use std::sync::OnceLock;
@@ -318,7 +318,7 @@ fn a_million_and_one_records_is_a_clear_error_not_an_allocation_failure() {
         text.push_str("10\n1 1 1\n0 0 0\n");
     }
     let error = legacy_rt::load(&text).unwrap_err();
-    let expected: SceneErrorKind = MeaningError::TooManyRecords { limit }.into();
+    let expected: SceneErrorKind = SyntaxError::TooManyRecords { limit }.into();
     assert_eq!(error.kind, expected);
     assert_eq!(error.at.line, 3 + 3 * limit);
 }

@@ -22,33 +22,57 @@ fn scale_shape(shape: &Shape, s: f64) -> Shape {
                 FinitePlane::new(
                     f.plane.normal,
                     f.plane.point * s,
-                    f.rot.row(0),
+                    f.local_from_world.row(0),
                     x.size * s,
                     "f",
                 )
                 .unwrap(),
             )
         }
-        Shape::FramedPlane(f) => Shape::FramedPlane(
-            PlaneFrame::new(f.plane.normal, f.plane.point * s, f.rot.row(0), "t").unwrap(),
+        Shape::TiledPlane(f) => Shape::TiledPlane(
+            PlaneFrame::new(
+                f.plane.normal,
+                f.plane.point * s,
+                f.local_from_world.row(0),
+                "t",
+            )
+            .unwrap(),
         ),
         Shape::Paraboloid(x) => {
             let f = &x.equation.frame;
-            let shape = Paraboloid::new(f.centre * s, line(f.irot), x.radius * s, x.height * s);
+            let shape = Paraboloid::new(
+                f.centre * s,
+                line(f.irot),
+                x.size.radius * s,
+                x.size.height * s,
+            );
             Shape::Paraboloid(shape.unwrap())
         }
         Shape::Cylinder(x) => {
             let f = &x.equation.frame;
-            let shape = Cylinder::new(f.centre * s, line(f.irot), x.radius * s, x.height * s);
+            let shape = Cylinder::new(
+                f.centre * s,
+                line(f.irot),
+                x.size.radius * s,
+                x.size.height * s,
+            );
             Shape::Cylinder(shape.unwrap())
         }
         Shape::Cone(x) => {
             let f = &x.equation.frame;
-            Shape::Cone(Cone::new(f.centre * s, line(f.irot), x.radius * s, x.height * s).unwrap())
+            Shape::Cone(
+                Cone::new(
+                    f.centre * s,
+                    line(f.irot),
+                    x.size.radius * s,
+                    x.size.height * s,
+                )
+                .unwrap(),
+            )
         }
         Shape::Hyperboloid(x) => {
             let f = &x.equation.frame;
-            let (r, h, w) = (x.radius * s, x.half_height * s, x.waist * s);
+            let (r, h, w) = (x.size.radius * s, x.size.height * s, x.waist * s);
             Shape::Hyperboloid(Hyperboloid::new(f.centre * s, line(f.irot), r, h, w).unwrap())
         }
         Shape::Quadric(x) => {

@@ -212,7 +212,7 @@ fn axis_reference(quadric: &AxisQuadric, ray: &Ray) -> Reference {
         })
     };
     let (base, dir) = (rotate(offset), rotate(dir));
-    let sq = quadric.square.to_array();
+    let sq = quadric.alpha.to_array();
     let mut a = t(0.0);
     let mut b = t(0.0);
     let mut c = t(quadric.constant);
@@ -483,7 +483,7 @@ pub fn as_general_quadric(equation: &AxisQuadric) -> Quadric {
     // f(P) = (P - C)ᵀ M (P - C) + β r·(P - C) + γ with M = Rᵀ diag(α) R and r the y row
     // of R (R = rotmat).
     let r = equation.frame.rotmat;
-    let m = r.transpose() * glam::DMat3::from_diagonal(equation.square) * r;
+    let m = r.transpose() * glam::DMat3::from_diagonal(equation.alpha) * r;
     let row_y = equation.frame.irot.col(1);
     let c = equation.frame.centre;
     let beta = equation.linear_y;
@@ -568,8 +568,8 @@ pub fn suite() -> Vec<Family> {
     };
     let cylinder_side = |g: &mut Gen, far: f64| {
         let s = cylinder(g, far);
-        let y = g.uniform(0.1, 0.9) * s.height;
-        Side::new(s.radius, y, s.radius, Shape::Cylinder(s))
+        let y = g.uniform(0.1, 0.9) * s.size.height;
+        Side::new(s.size.radius, y, s.size.radius, Shape::Cylinder(s))
     };
     families.push(family("cylinder", "far (d/r 10..1e5)", g, |g| {
         let side = cylinder_side(g, 0.0);
@@ -581,7 +581,7 @@ pub fn suite() -> Vec<Family> {
     }));
     families.push(family("cylinder", "nearly parallel to the axis", g, |g| {
         let s = cylinder(g, 0.0);
-        let (r, h) = (s.radius, s.height);
+        let (r, h) = (s.size.radius, s.size.height);
         let tilt = g.log(1e-9, 1e-3);
         let angle = g.uniform(0.0, std::f64::consts::TAU);
         let out = DVec3::new(angle.cos(), 0.0, angle.sin());
@@ -603,7 +603,7 @@ pub fn suite() -> Vec<Family> {
     }));
     families.push(family("cylinder", "at the rims y = 0 and y = h", g, |g| {
         let s = cylinder(g, 0.0);
-        let (r, h) = (s.radius, s.height);
+        let (r, h) = (s.size.radius, s.size.height);
         let rim = if g.0.random::<bool>() { 0.0 } else { h };
         let y = rim + g.sign() * g.log(1e-12, 1e-3) * h;
         let (y, impact, distance) = (y, r * g.uniform(0.0, 0.9), r * g.log(2.0, 100.0));
@@ -626,8 +626,8 @@ pub fn suite() -> Vec<Family> {
     };
     let cone_side = |g: &mut Gen, far: f64| {
         let s = cone(g, far);
-        let y = g.uniform(0.2, 0.9) * s.height;
-        Side::new(s.k.sqrt() * y, y, s.radius, Shape::Cone(s))
+        let y = g.uniform(0.2, 0.9) * s.size.height;
+        Side::new(s.k.sqrt() * y, y, s.size.radius, Shape::Cone(s))
     };
     families.push(family("cone", "far (d/r 10..1e5)", g, |g| {
         let side = cone_side(g, 0.0);
@@ -644,12 +644,12 @@ pub fn suite() -> Vec<Family> {
         let angle = g.uniform(0.0, std::f64::consts::TAU);
         // A point P of the wall on the side w, reached along the generator direction of
         // another side w' (so a = 0 but for the tilt), which arrives from outside.
-        let y = g.uniform(0.2, 0.9) * s.height;
+        let y = g.uniform(0.2, 0.9) * s.size.height;
         let target = slope * y * around(angle) + DVec3::new(0.0, y, 0.0);
         let other = around(angle + g.uniform(0.5, 1.0) * std::f64::consts::PI);
         let generator = DVec3::new(0.0, 1.0, 0.0) + slope * other;
         let dir = generator + g.log(1e-9, 1e-3) * g.direction();
-        let base = target - g.uniform(0.5, 5.0) * s.height * dir;
+        let base = target - g.uniform(0.5, 5.0) * s.size.height * dir;
         let ray = from_local(&s.equation, base, dir);
         Case {
             shape: Shape::Cone(s),
@@ -658,8 +658,8 @@ pub fn suite() -> Vec<Family> {
     }));
     families.push(family("cone", "through and near the apex", g, |g| {
         let s = cone(g, 0.0);
-        let miss = g.log(1e-12, 1e-2) * s.height * g.direction();
-        let from = s.height
+        let miss = g.log(1e-12, 1e-2) * s.size.height * g.direction();
+        let from = s.size.height
             * g.log(1.0, 100.0)
             * DVec3::new(g.uniform(-1.0, 1.0), 1.0, g.uniform(-1.0, 1.0));
         let target = if g.0.random::<bool>() {
@@ -685,19 +685,19 @@ pub fn suite() -> Vec<Family> {
     };
     let paraboloid_side = |g: &mut Gen, far: f64| {
         let s = paraboloid(g, far);
-        let y = g.uniform(0.2, 0.9) * s.height;
-        Side::new((s.k * y).sqrt(), y, s.radius, Shape::Paraboloid(s))
+        let y = g.uniform(0.2, 0.9) * s.size.height;
+        Side::new((s.k * y).sqrt(), y, s.size.radius, Shape::Paraboloid(s))
     };
     families.push(family("paraboloid", "along and near the axis", g, |g| {
         let s = paraboloid(g, 0.0);
         let offset = if g.0.random::<bool>() {
             0.0
         } else {
-            g.log(1e-12, 1e-3) * s.radius
+            g.log(1e-12, 1e-3) * s.size.radius
         };
         let angle = g.uniform(0.0, std::f64::consts::TAU);
         let out = DVec3::new(angle.cos(), 0.0, angle.sin());
-        let base = DVec3::new(0.0, s.height * g.uniform(1.0, 10.0), 0.0) + offset * out;
+        let base = DVec3::new(0.0, s.size.height * g.uniform(1.0, 10.0), 0.0) + offset * out;
         let dir = DVec3::new(0.0, -1.0, 0.0) + g.log(1e-12, 1e-6) * g.sign() * out;
         let ray = from_local(&s.equation, base, dir);
         Case {
@@ -726,19 +726,19 @@ pub fn suite() -> Vec<Family> {
     };
     let hyperboloid_side = |g: &mut Gen, far: f64| {
         let s = hyperboloid(g, far);
-        let y = g.uniform(-0.9, 0.9) * s.half_height;
-        let radius = (s.k * y * y + s.waist_sq).sqrt();
-        Side::new(radius, y, s.radius, Shape::Hyperboloid(s))
+        let y = g.uniform(-0.9, 0.9) * s.size.height;
+        let radius = (s.k * y * y + s.waist * s.waist).sqrt();
+        Side::new(radius, y, s.size.radius, Shape::Hyperboloid(s))
     };
     families.push(family("hyperboloid", "near the waist", g, |g| {
         let s = hyperboloid(g, 0.0);
-        let y = g.sign() * g.log(1e-9, 1e-3) * s.half_height;
+        let y = g.sign() * g.log(1e-9, 1e-3) * s.size.height;
         let fraction = if g.0.random::<bool>() {
             g.uniform(0.999, 1.0)
         } else {
             g.uniform(0.0, 0.9)
         };
-        let (y, impact, distance) = (y, s.waist * fraction, s.radius * g.log(2.0, 1e3));
+        let (y, impact, distance) = (y, s.waist * fraction, s.size.radius * g.log(2.0, 1e3));
         let (base, dir) = across_axis(g, y, impact, distance);
         let ray = from_local(&s.equation, base, dir);
         Case {

@@ -19,26 +19,24 @@
 //!    as it is.
 //! 3. Only then refine: evaluate f at the root from the world-space numbers
 //!    (B - C + t D, then `rotmat`) with every rounding error kept ([`residual`],
-//!    [`sum_terms`]), and solve the quadratic shifted to the root,
+//!    [`sum_as_f64`]), and solve the quadratic shifted to the root,
 //!    a σ² + f'(t) σ + f(t) = 0, for the correction σ ([`correction`]: usually Newton's
 //!    step with one curvature term). Its a and f'(t) need only a few correct digits, f(t)
 //!    needs them all. A sphere seen from just outside is solved from the base instead
 //!    ([`just_outside`]).
 //!
 //! The general `QUADRIC` takes the same steps about its centre
-//! ([`Centred`](crate::shapes::Centred)); a plane's dot products are recomputed with
+//! (`Centred`); a plane's dot products are recomputed with
 //! their rounding errors when they cancel. Bound tests (local y, the plane's z = 0)
 //! accept a hit within [`slack`] of the bound, so a point the scene puts exactly on a
 //! bound does not flip from pixel to pixel on the rounding of t and of the ray.
 
-use super::Kernel;
-use crate::shapes::dd::{
-    Dd, scaled, scaled_product, square, sum_pair, sum_terms, two_prod, two_sum,
+use super::{Kernel, Steps, Tangent};
+use super::{solve_quadratic, solve_quadratic_with_slope};
+use crate::shapes::kernel::dd::{
+    Dd, scaled, scaled_product, square, sum_as_dd, sum_as_f64, two_prod, two_sum,
 };
-use crate::shapes::{
-    AxisFrame, AxisQuadric, Plane, Quadric, Ray, RootRule, solve_quadratic,
-    solve_quadratic_with_slope,
-};
+use crate::shapes::{AxisFrame, AxisQuadric, Plane, Quadric, Ray};
 use glam::DVec3;
 
 /// The shipped kernel.
@@ -94,8 +92,29 @@ impl RootError {
     }
 }
 
+/// The accurate kernel's ray: step 1's result, and the local ray it gives.
+#[derive(Clone, Copy)]
+pub struct Near {
+    /// The recentring about the shape's centre (or a `QUADRIC`'s anchor).
+    start: Recentred,
+    /// B'' - C in the local frame.
+    near: DVec3,
+    /// D in the local frame.
+    dir: DVec3,
+}
+
+/// A root s of the recentred quadratic (t = s0 + s) and the slope sqrt(b² - 4ac) there.
+#[derive(Clone, Copy)]
+pub struct Root {
+    s: f64,
+    slope: f64,
+}
+
 impl Kernel for Accurate {
     const NAME: &'static str = "accurate";
+    type Local = Near;
+    type Coefficients = (f64, f64, f64);
+    type Root = Root;
 
     #[inline]
     fn axis_quadric(quadric: &AxisQuadric, ray: &Ray) -> Option<f64> {
@@ -107,36 +126,174 @@ impl Kernel for Accurate {
         quadric_hit(quadric, ray)
     }
 
+    /// Step 1: B'' = B + s0 D next to the centre (`recentre`), then `rotmat`.
+    #[inline(always)]
+    fn local_ray(frame: &AxisFrame, ray: &Ray) -> Near {
+        let start = recentre(ray, frame.centre);
+        Near {
+            start,
+            near: frame.rotate(start.near),
+            dir: frame.rotate(ray.dir),
+        }
+    }
+
+    #[inline(always)]
+    fn coefficients(quadric: &AxisQuadric, local: &Near) -> (f64, f64, f64) {
+        quadric.coefficients(local.near, local.dir)
+    }
+
+    #[inline(always)]
+    fn roots((a, b, c): (f64, f64, f64), tangent: Tangent) -> Option<[Root; 2]> {
+        let (roots, slope) = solve_quadratic_with_slope(a, b, c)?;
+        // The slope is sqrt(b² - 4ac): zero exactly where the discriminant is.
+        if !tangent.real(slope) {
+            return None;
+        }
+        Some(roots.map(|s| Root { s, slope }))
+    }
+
+    /// The sphere's nearer root needs one division, not two (`nearer_root`).
+    #[inline(always)]
+    fn nearer_root((a, b, c): (f64, f64, f64)) -> Option<Root> {
+        let (s, slope) = nearer_root(a, b, c)?;
+        Some(Root { s, slope })
+    }
+
+    /// Steps 2 and 3 for the sphere's root.
+    #[inline(always)]
+    fn nearer_distance(steps: &Steps<AxisQuadric, Self>, root: Root) -> Option<f64> {
+        let Near { start, near, dir } = *steps.local;
+        let (quadric, a) = (steps.shape, steps.abc.0);
+        let t = start.shift + root.s;
+        let error = RootError {
+            spread: Spread::new(quadric, near, dir).at(root.s),
+            slope: root.slope,
+        };
+        let t = if error.needs_refining(t) {
+            // From just outside, heading in, the base gives the root directly.
+            just_outside(quadric, steps.ray, start.offset, start.offset_error, a)
+                .unwrap_or_else(|| refine_axis(steps, t, 0).0)
+        } else {
+            t
+        };
+        t.is_finite().then_some(t)
+    }
+
+    /// Steps 2 and 3 for a root of a bounded quadric.
+    #[inline(always)]
+    fn distance_and_height(
+        steps: &Steps<AxisQuadric, Self>,
+        root: Root,
+        index: usize,
+        (low, high): (f64, f64),
+    ) -> Option<(f64, f64)> {
+        let Near { start, near, dir } = *steps.local;
+        let (s, t) = (root.s, start.shift + root.s);
+        let error = RootError {
+            spread: Spread::new(steps.shape, near, dir).at(s),
+            slope: root.slope,
+        };
+        let y = near.y + s * dir.y;
+        // A root out of bounds (or behind the base) by more than twice its estimated
+        // error stays out after refining: skip it unrefined.
+        let outside = (-t).max(low - y).max(y - high);
+        let slack = Self::bound_slack(steps.local, t);
+        if outside > 0.0 && error.clearly_beyond(outside, t, slack) {
+            return None;
+        }
+        Some(if error.needs_refining(t) {
+            refine_axis(steps, t, index)
+        } else {
+            (t, y)
+        })
+    }
+
+    /// `slack` of the sizes that computed the local y.
+    #[inline(always)]
+    fn bound_slack(local: &Near, t: f64) -> f64 {
+        let Recentred { offset, shift, .. } = local.start;
+        slack(offset.abs().max_element() + shift.abs() + t.abs())
+    }
+
     #[inline]
-    fn plane(plane: &Plane, ray: &Ray) -> Option<f64> {
+    fn plane_distance(plane: &Plane, ray: &Ray) -> Option<f64> {
         let n = plane.normal;
         let (over, under) = (n * (plane.point - ray.base), n * ray.dir);
         let (numerator, denominator) = (over.element_sum(), under.element_sum());
         // Each dot product is good to a few ulps unless its terms cancel.
         let cancels = |dot: f64, terms: DVec3| 2.0 * dot.abs() < terms.abs().element_sum();
-        let t = if cancels(numerator, over) || cancels(denominator, under) {
-            plane_dd(plane, ray)?
-        } else {
-            if denominator == 0.0 {
-                return None;
-            }
-            numerator / denominator
+        if cancels(numerator, over) || cancels(denominator, under) {
+            return plane_dd(plane, ray);
+        }
+        if denominator == 0.0 {
+            return None;
+        }
+        Some(numerator / denominator)
+    }
+
+    /// A hit meant to lie on the screen (z = 0: a floor through the bottom edge of the
+    /// window) comes out at z = ±1e-16 from the rounding of the ray's direction, and would
+    /// flip from pixel to pixel; within a few ulps of the terms it counts as on the
+    /// screen, which §5.1 draws.
+    #[inline(always)]
+    fn screen_slack(ray: &Ray, t: f64) -> f64 {
+        slack(ray.base.z.abs() + t.abs())
+    }
+
+    /// Step 1 about the anchor x0 of the quadric's centred form (`Centred`); no rotation.
+    #[inline(always)]
+    fn quadric_ray(quadric: &Quadric, ray: &Ray) -> Near {
+        let start = recentre(ray, quadric.centred.anchor);
+        Near {
+            start,
+            near: start.near,
+            dir: ray.dir,
+        }
+    }
+
+    /// f(x0 + u + s D) = a s² + b s + c with u = B'' - x0.
+    #[inline(always)]
+    fn quadric_coefficients(quadric: &Quadric, local: &Near) -> (f64, f64, f64) {
+        let (centred, near, dir) = (&quadric.centred, local.near, local.dir);
+        let m_dir = centred.second_order * dir;
+        let m_near = centred.second_order * near;
+        let a = dir.dot(m_dir);
+        let b = 2.0 * (near.dot(m_dir) + centred.gradient.dot(dir));
+        let c = near.dot(m_near) + 2.0 * centred.gradient.dot(near) + centred.value;
+        (a, b, c)
+    }
+
+    /// Steps 2 and 3 for a root of a `QUADRIC`.
+    #[inline(always)]
+    fn quadric_distance(steps: &Steps<Quadric, Self>, root: Root, index: usize) -> Option<f64> {
+        let (centred, local) = (&steps.shape.centred, *steps.local);
+        let t = local.start.shift + root.s;
+        let reach = root.s.abs() * local.dir.abs() + local.near.abs();
+        let m_reach = centred.second_order_abs * reach;
+        let gradient_abs = centred.gradient.abs();
+        let value_size = reach.dot(m_reach) + 2.0 * gradient_abs.dot(reach) + centred.value.abs();
+        let gradient_size = 2.0 * (m_reach + gradient_abs).element_sum();
+        let error = RootError {
+            spread: spread(value_size, gradient_size, reach),
+            slope: root.slope,
         };
-        // The z rule. A hit meant to lie on the screen (z = 0: a floor through the bottom
-        // edge of the window) comes out at z = ±1e-16 from the rounding of the ray's
-        // direction, and would flip from pixel to pixel; within a few ulps of the terms
-        // it counts as on the screen, which §5.1 draws.
-        let z = ray.base.z + t * ray.dir.z;
-        (t >= 0.0 && (z <= 0.0 || z <= slack(ray.base.z.abs() + t.abs()))).then_some(t)
+        if t < 0.0 && error.clearly_beyond(-t, t, 0.0) {
+            return None;
+        }
+        Some(if error.needs_refining(t) {
+            refine_quadric(steps, t, index)
+        } else {
+            t
+        })
     }
 }
 
-/// Defines `$name`, which runs `$inner` from a copy compiled for the FMA instruction
+/// Defines `$name`, which evaluates `$body` in a copy compiled for the FMA instruction
 /// when the CPU has it (checked once and cached by the standard library): the products
 /// of [`two_prod`] are then one instruction instead of a call to the C library's `fma`.
 /// Both copies compute the same bits.
 macro_rules! fma_dispatch {
-    ($(#[$meta:meta])* fn $name:ident => $inner:ident($($arg:ident: $ty:ty),*) -> $ret:ty) => {
+    ($(#[$meta:meta])* fn $name:ident($($arg:ident: $ty:ty),*) -> $ret:ty { $body:expr }) => {
         $(#[$meta])*
         #[inline(never)]
         fn $name($($arg: $ty),*) -> $ret {
@@ -144,47 +301,47 @@ macro_rules! fma_dispatch {
             {
                 #[target_feature(enable = "fma")]
                 fn with_fma($($arg: $ty),*) -> $ret {
-                    $inner($($arg),*)
+                    $body
                 }
                 if std::arch::is_x86_feature_detected!("fma") {
                     // SAFETY: the CPU has the instructions `with_fma` is compiled for.
                     return unsafe { with_fma($($arg),*) };
                 }
             }
-            $inner($($arg),*)
+            $body
         }
     };
 }
 
 fma_dispatch!(
-    /// [`plane_dd_any`].
-    fn plane_dd => plane_dd_any(plane: &Plane, ray: &Ray) -> Option<f64>
+    /// The plane's t with both dot products to within an ulp ([`plane_dd_any`]).
+    fn plane_dd(plane: &Plane, ray: &Ray) -> Option<f64> {
+        plane_dd_any(plane, ray)
+    }
 );
 fma_dispatch!(
-    /// [`axis_hit_any`].
-    fn axis_hit => axis_hit_any(quadric: &AxisQuadric, ray: &Ray) -> Option<f64>
+    /// Note 003's algorithm ([`AxisQuadric::hit`]) with this kernel's steps.
+    fn axis_hit(quadric: &AxisQuadric, ray: &Ray) -> Option<f64> {
+        quadric.hit::<Accurate>(ray)
+    }
+);
+fma_dispatch!(
+    /// Note 004's algorithm ([`Quadric::hit`]) with this kernel's steps.
+    fn quadric_hit(quadric: &Quadric, ray: &Ray) -> Option<f64> {
+        quadric.hit::<Accurate>(ray)
+    }
 );
 fma_dispatch!(
     /// [`refine_axis_any`], kept out of line so that the common path stays small.
-    fn refine_axis => refine_axis_any(
-        quadric: &AxisQuadric,
-        ray: &Ray,
-        start: &Recentred,
-        dir: DVec3,
-        a: f64,
-        t0: f64,
-        index: usize
-    ) -> (f64, f64)
+    fn refine_axis(steps: &Steps<AxisQuadric, Accurate>, t0: f64, index: usize) -> (f64, f64) {
+        refine_axis_any(steps, t0, index)
+    }
 );
 fma_dispatch!(
     /// [`refine_quadric_any`], kept out of line.
-    fn refine_quadric => refine_quadric_any(
-        quadric: &Quadric, ray: &Ray, a: f64, t0: f64, index: usize
-    ) -> f64
-);
-fma_dispatch!(
-    /// [`quadric_hit_any`].
-    fn quadric_hit => quadric_hit_any(quadric: &Quadric, ray: &Ray) -> Option<f64>
+    fn refine_quadric(steps: &Steps<Quadric, Accurate>, t0: f64, index: usize) -> f64 {
+        refine_quadric_any(steps, t0, index)
+    }
 );
 
 /// Step 1's result for a ray and a centre C.
@@ -206,7 +363,7 @@ struct Recentred {
 #[inline(always)]
 fn recentre(ray: &Ray, centre: DVec3) -> Recentred {
     let offset = ray.base - centre;
-    let offset_error = sum_error(ray.base, -centre, offset);
+    let offset_error = sum_error(ray.base, -centre);
     let shift = -offset.dot(ray.dir);
     let near = DVec3::new(
         shift.mul_add(ray.dir.x, offset.x),
@@ -219,67 +376,6 @@ fn recentre(ray: &Ray, centre: DVec3) -> Recentred {
         shift,
         near,
     }
-}
-
-/// The hit of an axis quadric (steps 1 to 3 of the module docs).
-#[inline(always)]
-fn axis_hit_any(quadric: &AxisQuadric, ray: &Ray) -> Option<f64> {
-    let frame = &quadric.frame;
-    let start = recentre(ray, frame.centre);
-    let Recentred {
-        offset,
-        offset_error,
-        shift,
-        near: near_world,
-    } = start;
-    let near = frame.rotate(near_world);
-    let dir = frame.rotate(ray.dir);
-    let (a, b, c) = quadric.coefficients(near, dir);
-    let spread = Spread::new(quadric, near, dir);
-    let RootRule::FirstPositiveWithin { low, high } = quadric.rule else {
-        // The sphere: the nearer root, which needs one division, not two.
-        let (s, slope) = nearer_root(a, b, c)?;
-        let t = shift + s;
-        let error = RootError {
-            spread: spread.at(s),
-            slope,
-        };
-        let t = if error.needs_refining(t) {
-            // From just outside, heading in, the base gives the root directly.
-            just_outside(quadric, ray, offset, offset_error, a)
-                .unwrap_or_else(|| refine_axis(quadric, ray, &start, dir, a, t, 0).0)
-        } else {
-            t
-        };
-        return t.is_finite().then_some(t);
-    };
-    let (roots, slope) = solve_quadratic_with_slope(a, b, c)?;
-    // The slack of the bound tests, only where a root is out of bounds.
-    let slack_at = |t: f64| slack(offset.abs().max_element() + shift.abs() + t.abs());
-    for (index, s) in roots.into_iter().enumerate() {
-        let t = shift + s;
-        let error = RootError {
-            spread: spread.at(s),
-            slope,
-        };
-        let y = near.y + s * dir.y;
-        // A root out of bounds (or behind the base) by more than twice its estimated
-        // error stays out after refining: skip it unrefined.
-        let outside = (-t).max(low - y).max(y - high);
-        if outside > 0.0 && error.clearly_beyond(outside, t, slack_at(t)) {
-            continue;
-        }
-        let (t, y) = if error.needs_refining(t) {
-            refine_axis(quadric, ray, &start, dir, a, t, index)
-        } else {
-            (t, y)
-        };
-        let within = |slack: f64| low - slack <= y && y <= high + slack;
-        if t > 0.0 && (within(0.0) || within(slack_at(t))) {
-            return Some(t);
-        }
-    }
-    None
 }
 
 /// The sphere seen from just outside it, heading in: when f(B) = c0 is small beside
@@ -309,7 +405,7 @@ fn just_outside(
         return None;
     }
     let exact = |hi: f64, lo: f64| Dd { hi, lo };
-    let c0 = sum_terms([
+    let c0 = sum_as_f64([
         square(exact(offset.x, offset_error.x)),
         square(exact(offset.y, offset_error.y)),
         square(exact(offset.z, offset_error.z)),
@@ -318,7 +414,7 @@ fn just_outside(
     // (B - C)·D cancels for a ray that heads in nearly along the surface; there it is
     // recomputed to the last bit.
     let b0 = if 2.0 * heading.abs() < (offset * ray.dir).abs().element_sum() {
-        2.0 * sum_terms([
+        2.0 * sum_as_f64([
             scaled(ray.dir.x, exact(offset.x, offset_error.x)),
             scaled(ray.dir.y, exact(offset.y, offset_error.y)),
             scaled(ray.dir.z, exact(offset.z, offset_error.z)),
@@ -355,7 +451,7 @@ impl Spread {
         Spread {
             near: near.abs(),
             dir: dir.abs(),
-            square: quadric.square.abs(),
+            square: quadric.alpha.abs(),
             linear: quadric.linear_y.abs(),
             constant: quadric.constant.abs(),
         }
@@ -368,8 +464,15 @@ impl Spread {
         let weighted = self.square * reach;
         let value_size = weighted.dot(reach) + self.linear * reach.y + self.constant;
         let gradient_size = 2.0 * weighted.element_sum() + self.linear;
-        2.0 * value_size + gradient_size * reach.max_element()
+        spread(value_size, gradient_size, reach)
     }
+}
+
+/// Step 2's `spread` from the sizes of the terms of f and of its gradient at a point whose
+/// coordinates are at most `reach` (see [`Spread`]).
+#[inline(always)]
+fn spread(value_size: f64, gradient_size: f64, reach: DVec3) -> f64 {
+    2.0 * value_size + gradient_size * reach.max_element()
 }
 
 /// The smaller root of a s² + b s + c = 0 for a > 0 when the discriminant is positive
@@ -378,7 +481,7 @@ impl Spread {
 #[inline(always)]
 fn nearer_root(a: f64, b: f64, c: f64) -> Option<(f64, f64)> {
     let discriminant = b * b - 4.0 * a * c;
-    if !(discriminant > 0.0 && a > 0.0) {
+    if !(Tangent::Misses.real(discriminant) && a > 0.0) {
         return None;
     }
     let root = discriminant.sqrt();
@@ -388,54 +491,15 @@ fn nearer_root(a: f64, b: f64, c: f64) -> Option<(f64, f64)> {
     Some((if b.is_sign_negative() { c / q } else { q / a }, root))
 }
 
-/// The smallest positive root of a general quadric: the same three steps as
-/// [`axis_hit_any`], about the anchor x0 of [`Centred`](crate::shapes::Centred).
+/// The rounding error of the f64 sum a + b, component by component ([`two_sum`]'s low
+/// part, exact).
 #[inline(always)]
-fn quadric_hit_any(quadric: &Quadric, ray: &Ray) -> Option<f64> {
-    let centred = &quadric.centred;
-    let Recentred { shift, near, .. } = recentre(ray, centred.anchor);
-    let dir = ray.dir;
-    // f(x0 + u + s D) = a s² + b s + c with u = B'' - x0.
-    let m_dir = centred.m * dir;
-    let m_near = centred.m * near;
-    let a = dir.dot(m_dir);
-    let b = 2.0 * (near.dot(m_dir) + centred.gradient.dot(dir));
-    let c = near.dot(m_near) + 2.0 * centred.gradient.dot(near) + centred.value;
-    let (roots, slope) = solve_quadratic_with_slope(a, b, c)?;
-    let gradient_abs = centred.gradient.abs();
-    let (near_abs, dir_abs) = (near.abs(), dir.abs());
-    for (index, s) in roots.into_iter().enumerate() {
-        let t = shift + s;
-        let reach = s.abs() * dir_abs + near_abs;
-        let m_reach = centred.m_abs * reach;
-        let value_size = reach.dot(m_reach) + 2.0 * gradient_abs.dot(reach) + centred.value.abs();
-        let gradient_size = 2.0 * (m_reach + gradient_abs).element_sum();
-        let error = RootError {
-            spread: 2.0 * value_size + gradient_size * reach.max_element(),
-            slope,
-        };
-        if t < 0.0 && error.clearly_beyond(-t, t, 0.0) {
-            continue;
-        }
-        let t = if error.needs_refining(t) {
-            refine_quadric(quadric, ray, a, t, index)
-        } else {
-            t
-        };
-        if t > 0.0 {
-            return Some(t);
-        }
-    }
-    None
-}
-
-/// The rounding error of the f64 sum a + b = sum, component by component (Knuth's
-/// two-sum, exact).
-#[inline(always)]
-fn sum_error(a: DVec3, b: DVec3, sum: DVec3) -> DVec3 {
-    let b_virtual = sum - a;
-    let a_virtual = sum - b_virtual;
-    (a - a_virtual) + (b - b_virtual)
+fn sum_error(a: DVec3, b: DVec3) -> DVec3 {
+    DVec3::new(
+        two_sum(a.x, b.x).lo,
+        two_sum(a.y, b.y).lo,
+        two_sum(a.z, b.z).lo,
+    )
 }
 
 /// The plane's t with both dot products to within an ulp; `None` if N·D is zero.
@@ -450,14 +514,14 @@ fn plane_dd_any(plane: &Plane, ray: &Ray) -> Option<f64> {
 }
 
 /// The plane's N·(Q - B) to within an ulp, where its terms cancel: Q - B kept exactly
-/// (two-sum) and the products added with their rounding errors ([`sum_terms`]).
+/// (two-sum) and the products added with their rounding errors ([`sum_as_f64`]).
 #[inline(always)]
 fn plane_numerator(plane: &Plane, ray: &Ray) -> f64 {
     let n = plane.normal;
     let offset = plane.point - ray.base;
-    let offset_error = sum_error(plane.point, -ray.base, offset);
+    let offset_error = sum_error(plane.point, -ray.base);
     let term = |n: f64, hi: f64, lo: f64| scaled(n, Dd { hi, lo });
-    sum_terms([
+    sum_as_f64([
         term(n.x, offset.x, offset_error.x),
         term(n.y, offset.y, offset_error.y),
         term(n.z, offset.z, offset_error.z),
@@ -467,7 +531,7 @@ fn plane_numerator(plane: &Plane, ray: &Ray) -> f64 {
 /// The plane's N·D to within an ulp, where its terms cancel (a grazing ray).
 #[inline(always)]
 fn plane_denominator(normal: DVec3, dir: DVec3) -> f64 {
-    sum_terms([
+    sum_as_f64([
         two_prod(normal.x, dir.x),
         two_prod(normal.y, dir.y),
         two_prod(normal.z, dir.z),
@@ -505,7 +569,7 @@ fn local_point(
     }
     // Row i of rotmat is column i of irot.
     let row = |axis: DVec3| {
-        sum_pair([
+        sum_as_dd([
             scaled(axis.x, world[0]),
             scaled(axis.y, world[1]),
             scaled(axis.z, world[2]),
@@ -525,17 +589,17 @@ fn local_point(
 
 /// f = Σ αᵢ Lᵢ² + β Ly + γ at the local point L given as hi + lo pairs, with every
 /// rounding error kept: each hi² exactly by two-prod, the cross term 2 hi lo as a
-/// correction (lo² is below the precision), the terms added by [`sum_terms`]. Every shape
+/// correction (lo² is below the precision), the terms added by [`sum_as_f64`]. Every shape
 /// of the table has αx = αz = 1, whose products need no rounding.
 #[inline(always)]
 fn residual(quadric: &AxisQuadric, x: Dd, y: Dd, z: Dd) -> f64 {
-    let alpha = quadric.square;
+    let alpha = quadric.alpha;
     let (mut xx, mut zz) = (square(x), square(z));
     if alpha.x != 1.0 || alpha.z != 1.0 {
         xx = scaled(alpha.x, xx);
         zz = scaled(alpha.z, zz);
     }
-    sum_terms([
+    sum_as_f64([
         xx,
         zz,
         scaled(alpha.y, square(y)),
@@ -568,22 +632,16 @@ fn correction(a: f64, slope: f64, value: f64, index: usize) -> f64 {
 
 /// Refines root `index` of an axis quadric; returns t and the local y of the hit.
 #[inline(always)]
-fn refine_axis_any(
-    quadric: &AxisQuadric,
-    ray: &Ray,
-    start: &Recentred,
-    dir: DVec3,
-    a: f64,
-    t0: f64,
-    index: usize,
-) -> (f64, f64) {
+fn refine_axis_any(steps: &Steps<AxisQuadric, Accurate>, t0: f64, index: usize) -> (f64, f64) {
+    let (quadric, ray, a) = (steps.shape, steps.ray, steps.abc.0);
+    let Near { start, dir, .. } = *steps.local;
     let (mut t, mut y) = (t0, f64::NAN);
     let Recentred {
         offset,
         offset_error,
         ..
-    } = *start;
-    let exact_y = quadric.square.y != 0.0 || quadric.linear_y != 0.0;
+    } = start;
+    let exact_y = quadric.alpha.y != 0.0 || quadric.linear_y != 0.0;
     for _ in 0..MAX_STEPS {
         let [x, ly, z] = local_point(&quadric.frame, offset, offset_error, ray.dir, t, exact_y);
         let value = residual(quadric, x, ly, z);
@@ -614,7 +672,8 @@ fn refine_axis_any(
 
 /// Refines root `index` of a general quadric: f(t) = pᵀQp with p = (B + tD, 1).
 #[inline(always)]
-fn refine_quadric_any(quadric: &Quadric, ray: &Ray, a: f64, t0: f64, index: usize) -> f64 {
+fn refine_quadric_any(steps: &Steps<Quadric, Accurate>, t0: f64, index: usize) -> f64 {
+    let (quadric, ray, a) = (steps.shape, steps.ray, steps.abc.0);
     let [qa, qb, qc, qd, qe, qf, qg, qh, qi, qj] = quadric.coefficients;
     let dir = ray.dir.extend(0.0);
     let mut t = t0;
@@ -634,7 +693,7 @@ fn refine_quadric_any(quadric: &Quadric, ray: &Ray, a: f64, t0: f64, index: usiz
             coordinate(ray.base.z, ray.dir.z),
         );
         // A x² + E y² + H z² + 2(B xy + C xz + F yz) + 2(D x + G y + I z) + J.
-        let value = sum_terms([
+        let value = sum_as_f64([
             scaled_product(qa, x, x),
             scaled_product(qe, y, y),
             scaled_product(qh, z, z),
@@ -721,17 +780,19 @@ mod tests {
             let up = DVec3::new(1.0, 2.0, -2.0) / 3.0;
             let side = DVec3::new(2.0, 1.0, 2.0) / 3.0;
             let angle = f64::to_radians(degrees);
-            let ray = Ray {
-                base: centre + (radius + height) * up,
-                dir: (-angle.sin() * up + angle.cos() * side).normalize(),
-            };
+            let ray = Ray::new(
+                centre + (radius + height) * up,
+                (-angle.sin() * up + angle.cos() * side).normalize(),
+            );
             let quadric = &sphere.equation;
-            let start = recentre(&ray, centre);
-            let a = ray.dir.length_squared();
+            let local = Accurate::local_ray(&quadric.frame, &ray);
+            let abc = Accurate::coefficients(quadric, &local);
+            let steps: Steps<_, Accurate> = Steps::new(quadric, &ray, &local, abc);
+            let (start, a) = (local.start, steps.abc.0);
             let direct = just_outside(quadric, &ray, start.offset, start.offset_error, a)
                 .expect("the base formula takes a ray from just outside");
             let t0 = start.shift - (start.near.length_squared() - radius * radius).abs().sqrt();
-            let (refined, _) = refine_axis_any(quadric, &ray, &start, ray.dir, a, t0, 0);
+            let (refined, _) = refine_axis_any(&steps, t0, 0);
             let ulp = f64::EPSILON * refined.abs();
             assert!(
                 (direct - refined).abs() <= 4.0 * ulp,

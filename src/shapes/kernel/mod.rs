@@ -15,30 +15,172 @@
 //! speed_vs_error` measures all four (docs/speed-vs-error.md).
 
 mod accurate;
-mod stable;
+pub(crate) mod dd;
+mod quadratic;
 mod textbook;
 mod textbook_f32;
 
 pub use accurate::Accurate;
-pub use stable::StableRoots;
-pub use textbook::Textbook;
-pub use textbook_f32::TextbookF32;
+pub use textbook::{
+    AsWritten, Double, Formula, Named, Plain, Precision, StableFormula, StableRoots, Textbook,
+    TextbookFormula,
+};
+pub use textbook_f32::{Single, TextbookF32};
 
-use super::{AxisQuadric, Plane, Quadric, Ray, RootRule};
+pub(crate) use quadratic::{solve_quadratic, solve_quadratic_with_slope};
 
-/// One way to compute the hit distance of each kind of surface.
+use super::{AxisFrame, AxisQuadric, Plane, Quadric, Ray};
+
+/// The arithmetic of one way to compute hit distances. The algorithms themselves, in the
+/// order of the notes, are written once, in [`AxisQuadric::hit`], [`Plane::hit`] and
+/// [`Quadric::hit`]; a kernel supplies only the steps that differ between kernels: how
+/// the ray is moved into the shape's frame, how a, b and c are evaluated, how the roots
+/// are computed, and whether and how a root is polished.
 pub trait Kernel: Copy + Default + Send + Sync + 'static {
     /// The name used by `--kernel` and the report.
     const NAME: &'static str;
 
-    /// The hit of a sphere or a quadric 21-24 under its [`RootRule`].
-    fn axis_quadric(quadric: &AxisQuadric, ray: &Ray) -> Option<f64>;
+    /// The ray in a shape's local frame, as this kernel holds it (B' and D', and
+    /// whatever its later steps need).
+    type Local: Copy;
 
-    /// The smallest positive root of a general `QUADRIC`.
-    fn quadric(quadric: &Quadric, ray: &Ray) -> Option<f64>;
+    /// The coefficients a, b, c, in this kernel's precision.
+    type Coefficients: Copy;
 
-    /// The plane's t = N·(Q - B) / N·D under the z rule of spec §5.1.
-    fn plane(plane: &Plane, ray: &Ray) -> Option<f64>;
+    /// A root, with whatever the kernel needs to polish it.
+    type Root: Copy;
+
+    /// The hit of a sphere or a quadric 21-24: [`AxisQuadric::hit`] in this kernel's
+    /// arithmetic. A kernel may run it from a copy of the code compiled for other
+    /// instructions (the accurate kernel's fused multiply-add).
+    #[inline(always)]
+    fn axis_quadric(quadric: &AxisQuadric, ray: &Ray) -> Option<f64> {
+        quadric.hit::<Self>(ray)
+    }
+
+    /// The hit of a general `QUADRIC`: [`Quadric::hit`] in this kernel's arithmetic.
+    #[inline(always)]
+    fn quadric(quadric: &Quadric, ray: &Ray) -> Option<f64> {
+        quadric.hit::<Self>(ray)
+    }
+
+    /// The hit of a plane: [`Plane::hit`] in this kernel's arithmetic.
+    #[inline(always)]
+    fn plane(plane: &Plane, ray: &Ray) -> Option<f64> {
+        plane.hit::<Self>(ray)
+    }
+
+    /// Note 003's first step for the quadrics 21-24 and the sphere: the ray in the
+    /// shape's frame, B' = rotmat (B - C), D' = rotmat D.
+    fn local_ray(frame: &AxisFrame, ray: &Ray) -> Self::Local;
+
+    /// a, b, c of a t² + b t + c = 0 along the local ray (note 003's table).
+    fn coefficients(quadric: &AxisQuadric, local: &Self::Local) -> Self::Coefficients;
+
+    /// The real roots, ascending, under `tangent`'s rule for a zero discriminant; `None`
+    /// when there is none.
+    fn roots(abc: Self::Coefficients, tangent: Tangent) -> Option<[Self::Root; 2]>;
+
+    /// The nearer root alone (the sphere, where a tangent ray misses): by default the
+    /// first of [`Kernel::roots`].
+    #[inline(always)]
+    fn nearer_root(abc: Self::Coefficients) -> Option<Self::Root> {
+        Self::roots(abc, Tangent::Misses).map(|[nearer, _]| nearer)
+    }
+
+    /// The sphere's nearer root as a distance along the world ray; `None` if it is not a
+    /// finite number.
+    fn nearer_distance(steps: &Steps<AxisQuadric, Self>, root: Self::Root) -> Option<f64>;
+
+    /// Root `index` (0 the smaller) of a bounded quadric as a distance along the world
+    /// ray and the local y of its point, polished where the kernel does that; `None`
+    /// where the root lies so far outside `bounds` (low, high) or behind the base that
+    /// no polishing could bring it back.
+    fn distance_and_height(
+        steps: &Steps<AxisQuadric, Self>,
+        root: Self::Root,
+        index: usize,
+        bounds: (f64, f64),
+    ) -> Option<(f64, f64)>;
+
+    /// How far past a bound of local y a hit at `t` may lie and still count: the rounding
+    /// of the coordinate, for a kernel that allows for it (0 for the others).
+    #[inline(always)]
+    fn bound_slack(_local: &Self::Local, _t: f64) -> f64 {
+        0.0
+    }
+
+    /// The plane's t = N·(Q - B) / N·D, `None` if N·D = 0 (spec §5.1).
+    fn plane_distance(plane: &Plane, ray: &Ray) -> Option<f64>;
+
+    /// How far beyond the screen (z > 0) a plane hit at `t` may lie and still count: the
+    /// rounding of z, for a kernel that allows for it.
+    #[inline(always)]
+    fn screen_slack(_ray: &Ray, _t: f64) -> f64 {
+        0.0
+    }
+
+    /// The ray as a general `QUADRIC`'s coefficients need it (the world ray, or one
+    /// moved next to the quadric's centre).
+    fn quadric_ray(quadric: &Quadric, ray: &Ray) -> Self::Local;
+
+    /// a = DᵀQD, b = 2 DᵀQP, c = PᵀQP of note 004 for P = (B, 1), D = (D, 0).
+    fn quadric_coefficients(quadric: &Quadric, local: &Self::Local) -> Self::Coefficients;
+
+    /// Root `index` of a `QUADRIC` as a distance along the world ray, polished where the
+    /// kernel does that; `None` where it lies so far behind the base that no polishing
+    /// could bring it in front.
+    fn quadric_distance(
+        steps: &Steps<Quadric, Self>,
+        root: Self::Root,
+        index: usize,
+    ) -> Option<f64>;
+}
+
+/// Where a hit algorithm has got to, for a kernel's later steps: the shape, the world
+/// ray, and what the earlier steps gave (the local ray, the coefficients).
+pub struct Steps<'a, S, K: Kernel> {
+    /// The shape being hit.
+    pub shape: &'a S,
+    /// The ray, in world coordinates.
+    pub ray: &'a Ray,
+    /// The ray in the shape's frame, as the kernel holds it.
+    pub local: &'a K::Local,
+    /// a, b, c.
+    pub abc: K::Coefficients,
+}
+
+impl<'a, S, K: Kernel> Steps<'a, S, K> {
+    /// The steps so far.
+    #[inline(always)]
+    pub fn new(shape: &'a S, ray: &'a Ray, local: &'a K::Local, abc: K::Coefficients) -> Self {
+        Steps {
+            shape,
+            ray,
+            local,
+            abc,
+        }
+    }
+}
+
+/// What a zero discriminant (a ray tangent to the surface) means (spec §5.2, §5.6).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Tangent {
+    /// The sphere: a hit only if the discriminant is > 0.
+    Misses,
+    /// The quadrics 21-24 and `QUADRIC`: the double root counts.
+    Counts,
+}
+
+impl Tangent {
+    /// Whether a discriminant `d` gives real roots under this rule (`false` for NaN).
+    #[inline(always)]
+    pub fn real<F: num_traits::Float>(self, d: F) -> bool {
+        match self {
+            Tangent::Misses => d > F::zero(),
+            Tangent::Counts => d >= F::zero(),
+        }
+    }
 }
 
 /// The kernels by name, for the command line and the report.
@@ -78,60 +220,4 @@ impl KernelChoice {
     pub fn from_name(name: &str) -> Option<KernelChoice> {
         KernelChoice::ALL.into_iter().find(|k| k.name() == name)
     }
-}
-
-/// The legacy choice among two ascending roots t0 <= t1 of an f64 kernel, given the
-/// local ray's y (base and direction) for the bounds.
-#[inline]
-pub(crate) fn choose(rule: RootRule, roots: [f64; 2], base_y: f64, dir_y: f64) -> Option<f64> {
-    match rule {
-        RootRule::Nearer => Some(roots[0]),
-        RootRule::FirstPositiveWithin { low, high } => roots.into_iter().find(|&t| {
-            let y = base_y + t * dir_y;
-            t > 0.0 && low <= y && y <= high
-        }),
-    }
-}
-
-/// A root solver: a, b, c and whether a zero discriminant misses.
-pub(crate) type Solver = fn(f64, f64, f64, bool) -> Option<[f64; 2]>;
-
-/// An axis quadric solved the way note 003 does it: the local ray, the coefficients as
-/// written, the roots by `solve`, the legacy choice. Only the solver differs between
-/// [`Textbook`] and [`StableRoots`].
-#[inline(always)]
-pub(crate) fn axis_quadric_as_written(
-    quadric: &AxisQuadric,
-    ray: &Ray,
-    solve: Solver,
-) -> Option<f64> {
-    let (base, dir) = quadric.frame.to_local(ray);
-    let (a, b, c) = quadric.coefficients(base, dir);
-    let roots = solve(a, b, c, strict(quadric.rule))?;
-    choose(quadric.rule, roots, base.y, dir.y)
-}
-
-/// A general quadric solved from its f64 coefficients by `solve`.
-#[inline(always)]
-pub(crate) fn quadric_as_written(quadric: &Quadric, ray: &Ray, solve: Solver) -> Option<f64> {
-    let (a, b, c) = quadric.coefficients(ray);
-    first_positive(solve(a, b, c, false)?)
-}
-
-/// The legacy choice for a general quadric: the smallest positive root.
-#[inline]
-pub(crate) fn first_positive(roots: [f64; 2]) -> Option<f64> {
-    roots.into_iter().find(|&t| t > 0.0)
-}
-
-/// The sphere rejects a zero discriminant (a tangent ray misses, spec §5.2).
-#[inline]
-pub(crate) fn strict(rule: RootRule) -> bool {
-    matches!(rule, RootRule::Nearer)
-}
-
-/// The plane's legacy test on an f64 t: in front of the base and not beyond the screen.
-#[inline]
-pub(crate) fn plane_rule(ray: &Ray, t: f64) -> Option<f64> {
-    (t >= 0.0 && ray.base.z + t * ray.dir.z <= 0.0).then_some(t)
 }

@@ -1,72 +1,80 @@
 //! The notes' formula in single precision, for contrast: every input is rounded to f32
-//! and every operation done in f32.
+//! and every operation done in f32, as a tracer written with `float` does. Only the
+//! [`Precision`] differs from [`Textbook`](super::Textbook).
 
-use super::{Kernel, choose, first_positive, plane_rule, strict};
-use crate::shapes::{AxisQuadric, Plane, Quadric, Ray};
+use super::textbook::{AsWritten, Named, Plain, Precision, TextbookFormula};
+use crate::shapes::axis_quadric::coefficients;
+use crate::shapes::{AxisFrame, AxisQuadric, Plane, Quadric, Ray};
 use glam::{DVec3, Vec3, Vec4};
 
 /// The textbook formula in f32.
-#[derive(Debug, Clone, Copy, Default)]
-pub struct TextbookF32;
+pub type TextbookF32 = AsWritten<TextbookFormula, Single>;
 
-/// f32 roots, ascending (the same rules as [`super::textbook::textbook_roots`]).
-#[inline]
-fn roots_f32(a: f32, b: f32, c: f32, strict: bool) -> Option<[f64; 2]> {
-    if a == 0.0 {
-        return (b != 0.0).then(|| [f64::from(-c / b); 2]);
-    }
-    let discriminant = b * b - 4.0 * a * c;
-    if discriminant < 0.0 || (strict && discriminant == 0.0) || discriminant.is_nan() {
-        return None;
-    }
-    let root = discriminant.sqrt();
-    let (t0, t1) = ((-b - root) / (2.0 * a), (-b + root) / (2.0 * a));
-    let (t0, t1) = (f64::from(t0), f64::from(t1));
-    Some(if t0 <= t1 { [t0, t1] } else { [t1, t0] })
+impl Named for TextbookF32 {
+    const LABEL: &'static str = "textbook-f32";
 }
 
-#[inline]
+/// Single precision: every input rounded to f32.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Single;
+
+#[inline(always)]
 fn single(v: DVec3) -> Vec3 {
     v.as_vec3()
 }
 
-impl Kernel for TextbookF32 {
-    const NAME: &'static str = "textbook-f32";
+impl Precision for Single {
+    type Vector = Vec3;
+    type Real = f32;
 
-    #[inline]
-    fn axis_quadric(quadric: &AxisQuadric, ray: &Ray) -> Option<f64> {
-        let frame = &quadric.frame;
+    #[inline(always)]
+    fn local_ray(frame: &AxisFrame, ray: &Ray) -> Plain<Vec3> {
         let rotmat = frame.rotmat.as_mat3();
-        let base = rotmat * (single(ray.base) - single(frame.centre));
-        let dir = rotmat * single(ray.dir);
-        let square = single(quadric.square);
+        Plain {
+            base: rotmat * (single(ray.base) - single(frame.centre)),
+            dir: rotmat * single(ray.dir),
+        }
+    }
+
+    #[inline(always)]
+    fn coefficients(quadric: &AxisQuadric, local: &Plain<Vec3>) -> (f32, f32, f32) {
+        let square = single(quadric.alpha).to_array();
         let (linear_y, constant) = (quadric.linear_y as f32, quadric.constant as f32);
-        let weighted = square * dir;
-        let a = weighted.dot(dir);
-        let b = 2.0 * weighted.dot(base) + linear_y * dir.y;
-        let c = (square * base).dot(base) + linear_y * base.y + constant;
-        let roots = roots_f32(a, b, c, strict(quadric.rule))?;
-        choose(quadric.rule, roots, f64::from(base.y), f64::from(dir.y))
+        let [base, dir] = [local.base, local.dir].map(|v| v.to_array());
+        coefficients(square, linear_y, constant, base, dir)
     }
 
-    #[inline]
-    fn quadric(quadric: &Quadric, ray: &Ray) -> Option<f64> {
-        let q = quadric.q.as_mat4();
-        let p = single(ray.base).extend(1.0);
-        let d: Vec4 = single(ray.dir).extend(0.0);
-        let qp = q * p;
-        let (a, b, c) = (d.dot(q * d), 2.0 * d.dot(qp), p.dot(qp));
-        first_positive(roots_f32(a, b, c, false)?)
+    /// The local y in f64 from the f32 ray, as the f64 kernels compute it.
+    #[inline(always)]
+    fn height(local: &Plain<Vec3>, t: f64) -> f64 {
+        f64::from(local.base.y) + t * f64::from(local.dir.y)
     }
 
-    #[inline]
-    fn plane(plane: &Plane, ray: &Ray) -> Option<f64> {
+    #[inline(always)]
+    fn plane_distance(plane: &Plane, ray: &Ray) -> Option<f64> {
         let normal = single(plane.normal);
         let denominator = normal.dot(single(ray.dir));
         if denominator == 0.0 {
             return None;
         }
         let t = normal.dot(single(plane.point) - single(ray.base)) / denominator;
-        plane_rule(ray, f64::from(t))
+        Some(f64::from(t))
+    }
+
+    #[inline(always)]
+    fn world_ray(ray: &Ray) -> Plain<Vec3> {
+        Plain {
+            base: single(ray.base),
+            dir: single(ray.dir),
+        }
+    }
+
+    #[inline(always)]
+    fn quadric_coefficients(quadric: &Quadric, local: &Plain<Vec3>) -> (f32, f32, f32) {
+        let q = quadric.q.as_mat4();
+        let p = local.base.extend(1.0);
+        let d: Vec4 = local.dir.extend(0.0);
+        let qp = q * p;
+        (d.dot(q * d), 2.0 * d.dot(qp), p.dot(qp))
     }
 }

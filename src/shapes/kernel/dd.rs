@@ -1,0 +1,253 @@
+//! Double-double numbers: an f64 pair `hi + lo` that carries about 106 bits, built from
+//! the error-free transformations of Knuth (two-sum) and Dekker (two-product).
+//!
+//! The accurate kernel evaluates a quadric at a trial point (the residual of one
+//! refinement step), where the terms cancel down to a small number and f64 would keep
+//! none of its digits, with sums of exact products ([`sum_as_f64`]); a general quadric's
+//! centred constants are computed once, at load, with [`Dd`] arithmetic.
+//! [`two_prod`] takes the product's rounding error from
+//! a fused multiply-add, which is exact on every machine: the kernel runs its refinement
+//! in a copy compiled for the FMA instruction when the CPU has one (checked once, at run
+//! time), and otherwise `mul_add` calls the C library's `fma`, slower, same bits.
+
+use std::ops::{Add, Mul, Neg, Sub};
+
+/// `hi + lo` with |lo| <= ulp(hi) / 2.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Dd {
+    /// The leading f64.
+    pub hi: f64,
+    /// What `hi` left out.
+    pub lo: f64,
+}
+
+impl Dd {
+    /// An f64 as a double-double.
+    #[inline]
+    pub fn new(value: f64) -> Dd {
+        Dd { hi: value, lo: 0.0 }
+    }
+
+    /// The value rounded to f64.
+    #[inline]
+    pub fn value(self) -> f64 {
+        self.hi + self.lo
+    }
+}
+
+/// a + b exactly, as the rounded sum and its rounding error (Knuth's two-sum, 6 flops).
+#[inline(always)]
+pub(crate) fn two_sum(a: f64, b: f64) -> Dd {
+    let hi = a + b;
+    let b_virtual = hi - a;
+    let a_virtual = hi - b_virtual;
+    let lo = (a - a_virtual) + (b - b_virtual);
+    Dd { hi, lo }
+}
+
+/// a + b exactly when |a| >= |b| (or a = 0) (Dekker's fast two-sum, 3 flops).
+#[inline(always)]
+fn fast_two_sum(a: f64, b: f64) -> Dd {
+    let hi = a + b;
+    let lo = b - (hi - a);
+    Dd { hi, lo }
+}
+
+/// a * b exactly, as the rounded product and its rounding error (exact unless the
+/// product overflows or underflows).
+#[inline(always)]
+pub(crate) fn two_prod(a: f64, b: f64) -> Dd {
+    let hi = a * b;
+    Dd {
+        hi,
+        lo: a.mul_add(b, -hi),
+    }
+}
+
+impl Add for Dd {
+    type Output = Dd;
+    /// The sum, with an error of a few units in the 106th bit of the larger operand.
+    #[inline(always)]
+    fn add(self, other: Dd) -> Dd {
+        let s = two_sum(self.hi, other.hi);
+        let t = two_sum(self.lo, other.lo);
+        let u = fast_two_sum(s.hi, s.lo + t.hi);
+        fast_two_sum(u.hi, u.lo + t.lo)
+    }
+}
+
+impl Neg for Dd {
+    type Output = Dd;
+    #[inline(always)]
+    fn neg(self) -> Dd {
+        Dd {
+            hi: -self.hi,
+            lo: -self.lo,
+        }
+    }
+}
+
+impl Sub for Dd {
+    type Output = Dd;
+    #[inline(always)]
+    fn sub(self, other: Dd) -> Dd {
+        self + -other
+    }
+}
+
+impl Mul for Dd {
+    type Output = Dd;
+    /// The product; the lo * lo term is below the result's precision and left out.
+    #[inline(always)]
+    fn mul(self, other: Dd) -> Dd {
+        let p = two_prod(self.hi, other.hi);
+        fast_two_sum(p.hi, p.lo + (self.hi * other.lo + self.lo * other.hi))
+    }
+}
+
+impl Mul<Dd> for f64 {
+    type Output = Dd;
+    #[inline(always)]
+    fn mul(self, other: Dd) -> Dd {
+        let p = two_prod(self, other.hi);
+        fast_two_sum(p.hi, p.lo + self * other.lo)
+    }
+}
+
+/// u² for a pair u, as an unnormalised pair: hi² exactly by two-prod, the cross term
+/// 2 hi lo in lo (lo² is below the precision).
+#[inline(always)]
+pub(crate) fn square(u: Dd) -> Dd {
+    let p = two_prod(u.hi, u.hi);
+    Dd {
+        hi: p.hi,
+        lo: p.lo + 2.0 * u.hi * u.lo,
+    }
+}
+
+/// c u v for pairs u and v, as an unnormalised pair: c (u.hi v.hi) exactly by two
+/// two-products, the cross terms c (u.hi v.lo + u.lo v.hi) in lo.
+#[inline(always)]
+pub(crate) fn scaled_product(c: f64, u: Dd, v: Dd) -> Dd {
+    let p = two_prod(u.hi, v.hi);
+    let q = two_prod(c, p.hi);
+    Dd {
+        hi: q.hi,
+        lo: q.lo + c * (p.lo + (u.hi * v.lo + u.lo * v.hi)),
+    }
+}
+
+/// c u for a pair u, as an unnormalised pair.
+#[inline(always)]
+pub(crate) fn scaled(c: f64, u: Dd) -> Dd {
+    let q = two_prod(c, u.hi);
+    Dd {
+        hi: q.hi,
+        lo: q.lo + c * u.lo,
+    }
+}
+
+/// The sum of N pairs, rounded once (see [`sum_as_dd`]).
+#[inline(always)]
+pub(crate) fn sum_as_f64<const N: usize>(terms: [Dd; N]) -> f64 {
+    sum_as_dd(terms).value()
+}
+
+/// The sum of N pairs as an unnormalised pair: the leading parts are added two by two as
+/// a tree (each addition by two-sum, its error kept), then all the errors and low parts,
+/// also as a tree. As accurate as summing in twice the precision and rounding (the Sum2
+/// algorithm of Ogita, Rump and Oishi), but a chain of log2(N) additions instead of N,
+/// which matters where the caller waits on the sum.
+#[inline(always)]
+pub(crate) fn sum_as_dd<const N: usize>(terms: [Dd; N]) -> Dd {
+    let mut leading = terms.map(|term| term.hi);
+    let mut errors = [0.0; N];
+    let mut count = N;
+    let mut found = 0;
+    while count > 1 {
+        let half = count / 2;
+        for i in 0..half {
+            let sum = two_sum(leading[2 * i], leading[2 * i + 1]);
+            leading[i] = sum.hi;
+            errors[found] = sum.lo;
+            found += 1;
+        }
+        if count % 2 == 1 {
+            leading[half] = leading[count - 1];
+        }
+        count -= half;
+    }
+    Dd {
+        hi: leading[0],
+        lo: plain_sum(terms.map(|term| term.lo)) + plain_sum(errors),
+    }
+}
+
+/// An f64 sum of N numbers, added two by two as a tree.
+#[inline(always)]
+fn plain_sum<const N: usize>(mut values: [f64; N]) -> f64 {
+    let mut count = N;
+    while count > 1 {
+        let half = count / 2;
+        for i in 0..half {
+            values[i] = values[2 * i] + values[2 * i + 1];
+        }
+        if count % 2 == 1 {
+            values[half] = values[count - 1];
+        }
+        count -= half;
+    }
+    if N == 0 { 0.0 } else { values[0] }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn two_sum_and_two_prod_are_exact() {
+        // 1 + 2^-60 is not an f64; the pair keeps the 2^-60.
+        let s = two_sum(1.0, 2f64.powi(-60));
+        assert_eq!((s.hi, s.lo), (1.0, 2f64.powi(-60)));
+        // (1 + 2^-30)² = 1 + 2^-29 + 2^-60: the last term is the product's rounding error.
+        let x = 1.0 + 2f64.powi(-30);
+        let p = two_prod(x, x);
+        assert_eq!((p.hi, p.lo), (1.0 + 2f64.powi(-29), 2f64.powi(-60)));
+    }
+
+    #[test]
+    fn cancellation_keeps_the_low_digits() {
+        // (1e8 + 1e-9)² - 1e16 = 0.2 + 1e-18. In f64, 1e8 + 1e-9 rounds to 1e8 and the
+        // difference comes out as 0; the pair gives 0.2 to the last bit.
+        let x = Dd::new(1e8) + Dd::new(1e-9);
+        let difference = x * x - Dd::new(1e16);
+        assert!((difference.value() - 0.2).abs() <= 1e-16, "{difference:?}");
+        let plain = (1e8f64 + 1e-9) * (1e8 + 1e-9) - 1e16;
+        assert_eq!(plain, 0.0);
+    }
+
+    #[test]
+    fn sum_terms_keeps_what_cancels() {
+        // 1e16 + 1 + 1 - 1e16 = 2 exactly; in f64 each 1 is lost against 1e16 (ulp 2 there,
+        // ties to even), and the plain sum is 0.
+        let plain = 1e16f64 + 1.0 + 1.0 - 1e16;
+        assert_eq!(plain, 0.0);
+        let terms = [1e16, 1.0, 1.0, -1e16].map(Dd::new);
+        assert_eq!(sum_as_f64(terms), 2.0);
+        // (1e8 + 1)² - 1e16 - 2e8 = 1, with the square kept exact by two-prod.
+        let x = 1e8 + 1.0;
+        assert_eq!(
+            sum_as_f64([two_prod(x, x), Dd::new(-1e16), Dd::new(-2e8)]),
+            1.0
+        );
+        // 3 (1e8 + 2^-30)² - 3e16 = 6e8 2^-30 + 3 2^-60: the first term comes from the
+        // cross terms alone (in f64, 1e8 + 2^-30 is 1e8 and the difference is 0); the
+        // second, lo², is below the precision and left out.
+        let u = two_sum(1e8, 2f64.powi(-30));
+        let sum = sum_as_f64([scaled_product(3.0, u, u), Dd::new(-3e16)]);
+        assert!(
+            (sum - 6e8 * 2f64.powi(-30)).abs() <= 2f64.powi(-58),
+            "{sum}"
+        );
+    }
+}

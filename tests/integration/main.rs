@@ -1,0 +1,32 @@
+//! The integration tests, linked into one binary (STYLE.md: one binary is cheaper to build
+//! and link on a 2-core CI than one per file).
+
+// The hard-case suite: the shipped kernel within 4 ulps, the textbook formula not.
+mod accuracy;
+// The command line: sizes, formats, options, standard output holding only the image.
+mod cli;
+// Helpers: running the binary, listing scenes, snapshot settings.
+mod common;
+// The course's own scenes load; their dumps and images are snapshots.
+mod course_scenes;
+// Rays and shapes at the edge: tangents, axis-parallel rays, apexes.
+mod degenerate;
+// The docs name only code that exists, and their scene snippets load.
+mod docs;
+// The course notes' errors, each shown by a test.
+mod errata;
+// Every invalid input under tests/invalid/ gives a located error.
+mod errors;
+// Every example scene loads; its dump and image are snapshots.
+mod examples;
+// The hierarchy and the threads give the scan's and one thread's bytes.
+mod performance;
+// Pixel values derived from the formulas of spec §4.
+mod pixels;
+// What a hostile audit broke (issue 12): -o, pipes, limits, terminals.
+mod reliability;
+// Property tests: random, mutated and generated scenes load or fail cleanly, and render.
+mod robustness;
+// A scene scaled by 1e-3 and 1e3 keeps its image.
+mod scale;
+// scratch
