@@ -7,13 +7,16 @@
 
 mod bvh;
 mod shading;
+pub mod trace;
 
 pub use bvh::{Boxes, Bvh};
-pub(crate) use shading::{Screen, material_at};
+pub use shading::PatternNote;
+pub(crate) use shading::{Screen, material_and_pattern};
+pub use trace::{Event, LightStep, Recorder, Show, Stage, Trace, trace};
 
 use crate::scene::{Light, Scene};
 use crate::shapes::kernel::{Accurate, Kernel, KernelChoice, StableRoots, Textbook, TextbookF32};
-use crate::shapes::{Ray, Surface, unit};
+use crate::shapes::{Ray, Shape, Surface, unit};
 use glam::{DVec2, DVec3};
 use std::marker::PhantomData;
 
@@ -47,6 +50,10 @@ pub struct Options {
     /// enough bounded objects for it to pay off; `false` forces the legacy linear scan
     /// (for measurements and tests: the image is the same either way).
     pub accelerate: bool,
+    /// How much of spec §4 applies: the course's assignments (spec §7.2).
+    pub stage: Stage,
+    /// A diagnostic image instead of the stage's, or `None`.
+    pub show: Option<Show>,
 }
 
 impl Options {
@@ -59,6 +66,8 @@ impl Options {
             kernel: KernelChoice::Accurate,
             threads: 1,
             accelerate: true,
+            stage: Stage::Full,
+            show: None,
         }
     }
 }
@@ -140,10 +149,15 @@ impl Camera {
         }
     }
 
-    /// The ray through pixel (x, y), (0, 0) at the lower left; `None` if the viewpoint is
-    /// the pixel's own world point (no direction).
+    /// The world point of pixel (x, y), (0, 0) at the lower left (spec §4.1).
+    fn world(&self, x: usize, y: usize) -> DVec3 {
+        DVec3::new(self.xs[x], self.ys[y], 0.0)
+    }
+
+    /// The ray through pixel (x, y); `None` if the viewpoint is the pixel's own world
+    /// point (no direction).
     fn ray(&self, x: usize, y: usize) -> Option<Ray> {
-        let target = DVec3::new(self.xs[x], self.ys[y], 0.0);
+        let target = self.world(x, y);
         let dir = unit(target - self.viewpoint)?;
         Some(Ray {
             base: self.viewpoint,
@@ -178,7 +192,7 @@ fn render_with<K: Kernel>(
         for (x, pixel) in out.iter_mut().enumerate() {
             stats.camera += 1;
             let colour = match camera.ray(x, y) {
-                Some(ray) => tracer.trace(ray, &mut stats),
+                Some(ray) => tracer.pixel(ray, options.show, &mut stats, &mut ()),
                 None => DVec3::ZERO,
             };
             *pixel = colour.to_array().map(to_byte);
@@ -230,14 +244,14 @@ fn render_with<K: Kernel>(
 /// The colour seen along one ray from the eye (spec §4.2 with total_dist = 0 and no
 /// `last_hit`), before the conversion to bytes.
 pub fn ray_trace(scene: &Scene, options: &Options, ray: Ray) -> DVec3 {
-    let mut stats = Stats::default();
+    fn with<K: Kernel>(scene: &Scene, options: &Options, ray: Ray) -> DVec3 {
+        Tracer::<K>::new(scene, options).pixel(ray, options.show, &mut Stats::default(), &mut ())
+    }
     match options.kernel {
-        KernelChoice::Accurate => Tracer::<Accurate>::new(scene, options).trace(ray, &mut stats),
-        KernelChoice::Stable => Tracer::<StableRoots>::new(scene, options).trace(ray, &mut stats),
-        KernelChoice::Textbook => Tracer::<Textbook>::new(scene, options).trace(ray, &mut stats),
-        KernelChoice::TextbookF32 => {
-            Tracer::<TextbookF32>::new(scene, options).trace(ray, &mut stats)
-        }
+        KernelChoice::Accurate => with::<Accurate>(scene, options, ray),
+        KernelChoice::Stable => with::<StableRoots>(scene, options, ray),
+        KernelChoice::Textbook => with::<Textbook>(scene, options, ray),
+        KernelChoice::TextbookF32 => with::<TextbookF32>(scene, options, ray),
     }
 }
 
@@ -250,6 +264,8 @@ struct Tracer<'a, K> {
     bvh: Option<Bvh>,
     max_dist: f64,
     screen: Screen,
+    /// Which parts of spec §4 apply (spec §7.2).
+    stage: Stage,
     kernel: PhantomData<K>,
 }
 
@@ -266,18 +282,49 @@ impl<'a, K: Kernel> Tracer<'a, K> {
             boxes,
             max_dist: options.max_dist,
             screen,
+            stage: options.stage,
             kernel: PhantomData,
         }
     }
 
+    /// Object `index`'s t along `ray`, told to `rec` with the shape's reasons when it
+    /// records (the normal render takes the kernel's fastest entry instead: same t).
+    #[inline(always)]
+    fn test<R: Recorder>(
+        &self,
+        index: usize,
+        shape: &Shape,
+        ray: &Ray,
+        rec: &mut R,
+    ) -> Option<f64> {
+        if !R::ENABLED {
+            return shape.hit_with::<K>(ray);
+        }
+        let mut notes = Vec::new();
+        let t = shape.hit_noted::<K>(ray, &mut notes);
+        rec.record(|| Event::Tested {
+            object: index,
+            t,
+            notes,
+        });
+        t
+    }
+
     /// The closest object with t > 0 along `ray`, skipping `last_hit`; ties go to the
     /// earlier object (spec §4.6).
-    #[inline]
-    fn closest_hit(&self, ray: &Ray, last_hit: Option<usize>) -> Option<(usize, f64)> {
+    #[inline(always)]
+    fn closest_hit<R: Recorder>(
+        &self,
+        ray: &Ray,
+        last_hit: Option<usize>,
+        rec: &mut R,
+    ) -> Option<(usize, f64)> {
         let inverse = ray.dir.recip();
         let counts =
             |index: usize, t: f64| t > 0.0 && self.boxes.admits(index, ray.base, inverse, t);
-        if let Some(bvh) = &self.bvh {
+        if let Some(bvh) = &self.bvh
+            && !R::ENABLED
+        {
             return bvh.closest(ray, |index| {
                 if Some(index) == last_hit {
                     return None;
@@ -289,9 +336,10 @@ impl<'a, K: Kernel> Tracer<'a, K> {
         let mut best: Option<(usize, f64)> = None;
         for (index, object) in self.scene.objects.iter().enumerate() {
             if Some(index) == last_hit {
+                rec.record(|| Event::Skipped { object: index });
                 continue;
             }
-            if let Some(t) = object.shape.hit_with::<K>(ray)
+            if let Some(t) = self.test(index, &object.shape, ray, rec)
                 && best.is_none_or(|(_, best_t)| t < best_t)
                 && counts(index, t)
             {
@@ -301,49 +349,103 @@ impl<'a, K: Kernel> Tracer<'a, K> {
         best
     }
 
-    /// Whether any object but `skip` lies on `ray` closer than `dist` (spec §4.3).
+    /// An object but `skip` on `ray` closer than `dist`, which blocks the light (spec
+    /// §4.3): the first in file order, with its t (unknown with the hierarchy, which
+    /// only answers whether there is one).
     #[inline]
-    fn blocked(&self, ray: &Ray, skip: usize, dist: f64) -> bool {
+    fn blocked<R: Recorder>(
+        &self,
+        ray: &Ray,
+        skip: usize,
+        dist: f64,
+        rec: &mut R,
+    ) -> Option<(usize, f64)> {
         let inverse = ray.dir.recip();
-        let blocks = |index: usize| {
-            index != skip
-                && self.scene.objects[index]
-                    .shape
-                    .hit_with::<K>(ray)
-                    .is_some_and(|t| {
-                        t > 0.0 && t < dist && self.boxes.admits(index, ray.base, inverse, t)
-                    })
+        let blocks = |index: usize, t: f64| {
+            t > 0.0 && t < dist && self.boxes.admits(index, ray.base, inverse, t)
         };
-        match &self.bvh {
-            Some(bvh) => bvh.any(ray, dist, blocks),
-            None => (0..self.scene.objects.len()).any(blocks),
+        if let Some(bvh) = &self.bvh
+            && !R::ENABLED
+        {
+            let found = bvh.any(ray, dist, |index| {
+                index != skip
+                    && (self.scene.objects[index].shape.hit_with::<K>(ray))
+                        .is_some_and(|t| blocks(index, t))
+            });
+            return found.then_some((skip, f64::NAN));
         }
+        for (index, object) in self.scene.objects.iter().enumerate() {
+            if index == skip {
+                rec.record(|| Event::Skipped { object: index });
+                continue;
+            }
+            if let Some(t) = self.test(index, &object.shape, ray, rec)
+                && blocks(index, t)
+            {
+                return Some((index, t));
+            }
+        }
+        None
     }
 
     /// ray_trace of spec §4.2, with the mirror recursion unrolled into a loop: the colour
-    /// is Σ (S₁ ⊙ … ⊙ Sₖ) ⊙ Iₖ₊₁ / total_distₖ₊₁ over the bounces.
-    fn trace(&self, mut ray: Ray, stats: &mut Stats) -> DVec3 {
+    /// is Σ (S₁ ⊙ … ⊙ Sₖ) ⊙ Iₖ₊₁ / total_distₖ₊₁ over the bounces. The stage (spec §7.2)
+    /// leaves out the lights, the shadow rays or the reflection.
+    fn trace<R: Recorder>(&self, mut ray: Ray, stats: &mut Stats, rec: &mut R) -> DVec3 {
         let mut colour = DVec3::ZERO;
         let mut weight = DVec3::ONE;
         let mut total_dist = 0.0;
         let mut last_hit = None;
-        for _ in 0..=MAX_BOUNCES {
+        for depth in 0..=MAX_BOUNCES {
             if total_dist > self.max_dist {
+                rec.record(|| Event::CutOff { total_dist });
                 break;
             }
-            let Some((index, t)) = self.closest_hit(&ray, last_hit) else {
+            rec.record(|| Event::Segment {
+                depth,
+                ray,
+                total_dist,
+            });
+            let hit = self.closest_hit(&ray, last_hit, rec);
+            rec.record(|| Event::Closest { hit });
+            let Some((index, t)) = hit else {
                 break;
             };
             total_dist += t;
             let object = &self.scene.objects[index];
             let surface = object.shape.surface(&ray, t);
-            let material = material_at(object, &surface, &self.screen);
+            let (material, pattern) = material_and_pattern(object, &surface, &self.screen);
+            rec.record(|| Event::Surface {
+                object: index,
+                t,
+                total_dist,
+                surface,
+                material,
+                pattern,
+            });
             let mut intensity = material.ambient;
-            for light in &self.scene.lights {
-                intensity += self.diffuse(light, index, &surface, material.diffuse, stats);
+            if self.stage.lights() {
+                for (light, lamp) in self.scene.lights.iter().enumerate() {
+                    rec.record(|| Event::Lamp { light });
+                    let diffuse = self.diffuse(lamp, index, &surface, material.diffuse, stats, rec);
+                    intensity += diffuse;
+                    rec.record(|| Event::Lit {
+                        light,
+                        contribution: diffuse,
+                        intensity,
+                    });
+                }
             }
-            colour += weight * (intensity / total_dist);
-            if material.specular == DVec3::ZERO {
+            let seen = intensity / total_dist;
+            colour += weight * seen;
+            rec.record(|| Event::Divided {
+                intensity,
+                total_dist,
+                seen,
+                weight,
+                colour,
+            });
+            if material.specular == DVec3::ZERO || !self.stage.reflects() {
                 break;
             }
             weight *= material.specular;
@@ -364,15 +466,17 @@ impl<'a, K: Kernel> Tracer<'a, K> {
 
     /// One light's diffuse contribution at a hit on object `index` (spec §4.3).
     #[inline]
-    fn diffuse(
+    fn diffuse<R: Recorder>(
         &self,
         light: &Light,
         index: usize,
         surface: &Surface,
         diffuse: DVec3,
         stats: &mut Stats,
+        rec: &mut R,
     ) -> DVec3 {
         if diffuse == DVec3::ZERO {
+            rec.record(|| Event::Light(LightStep::NoDiffuse));
             return DVec3::ZERO;
         }
         let to_light = light.location - surface.point;
@@ -380,28 +484,90 @@ impl<'a, K: Kernel> Tracer<'a, K> {
         // A light at the hit point, or so far away that the distance overflowed, has no
         // direction: no contribution rather than a NaN.
         if dist.is_nan() || dist <= 0.0 || dist.is_infinite() {
+            rec.record(|| Event::Light(LightStep::NoDirection { dist }));
             return DVec3::ZERO;
         }
         let u = to_light / dist;
         let cos = surface.normal.dot(u);
+        rec.record(|| Event::Light(LightStep::Towards { u, dist, cos }));
         if cos.is_nan() || cos <= 0.0 {
             return DVec3::ZERO;
         }
-        if let Some(beam) = &light.beam
-            && (-u).dot(beam.direction) <= beam.cos_limit
-        {
-            return DVec3::ZERO;
+        if let Some(beam) = &light.beam {
+            let along = (-u).dot(beam.direction);
+            let lit = along > beam.cos_limit;
+            rec.record(|| Event::Light(LightStep::Spot { along, lit }));
+            if !lit {
+                return DVec3::ZERO;
+            }
         }
-        stats.shadow += 1;
-        let shadow = Ray {
-            base: surface.point,
-            dir: u,
-        };
-        if self.blocked(&shadow, index, dist) {
-            return DVec3::ZERO;
+        if self.stage.shadows() {
+            stats.shadow += 1;
+            let shadow = Ray {
+                base: surface.point,
+                dir: u,
+            };
+            rec.record(|| Event::Light(LightStep::ShadowRay { ray: shadow }));
+            let blocker = self.blocked(&shadow, index, dist, rec);
+            rec.record(|| Event::Light(LightStep::Blocked { blocker }));
+            if blocker.is_some() {
+                return DVec3::ZERO;
+            }
         }
         diffuse * light.emissivity * (cos / dist)
     }
+
+    /// The diagnostic image of `show` at the first hit along `ray` (spec §7.2's companions:
+    /// normals, object ids, distance).
+    fn show<R: Recorder>(&self, ray: Ray, show: Show, rec: &mut R) -> DVec3 {
+        rec.record(|| Event::Segment {
+            depth: 0,
+            ray,
+            total_dist: 0.0,
+        });
+        let hit = self.closest_hit(&ray, None, rec);
+        rec.record(|| Event::Closest { hit });
+        let Some((index, t)) = hit else {
+            return DVec3::ZERO;
+        };
+        let colour = match show {
+            Show::Normals => {
+                let normal = self.scene.objects[index].shape.surface(&ray, t).normal;
+                (normal + DVec3::ONE) / 2.0
+            }
+            Show::Objects => object_colour(index),
+            Show::Depth => DVec3::splat(1.0 - t / self.max_dist),
+        };
+        rec.record(|| Event::Shown { show, colour });
+        colour
+    }
+
+    /// The colour of one camera ray under the options: the stage's image, or a
+    /// diagnostic one.
+    #[inline]
+    fn pixel<R: Recorder>(
+        &self,
+        ray: Ray,
+        show: Option<Show>,
+        stats: &mut Stats,
+        rec: &mut R,
+    ) -> DVec3 {
+        match show {
+            None => self.trace(ray, stats, rec),
+            Some(show) => self.show(ray, show, rec),
+        }
+    }
+}
+
+/// A distinct, stable colour for object `index` in `--show objects`: the golden-ratio
+/// walk around the hue circle, so that neighbours in the file differ most.
+pub fn object_colour(index: usize) -> DVec3 {
+    let hue = (index as f64 * 0.618_033_988_749_895).fract();
+    let channel = |offset: f64| {
+        let angle = std::f64::consts::TAU * (hue + offset);
+        0.55 + 0.45 * angle.cos()
+    };
+    DVec3::new(channel(0.0), channel(1.0 / 3.0), channel(2.0 / 3.0))
 }
 
 #[cfg(test)]

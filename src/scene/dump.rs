@@ -14,7 +14,7 @@ const DECIMALS: usize = 6;
 
 /// A number with `DECIMALS` decimals; in exponent form where that would print more than
 /// 15 digits before the point or show a non-zero value as zero.
-fn number(value: f64) -> String {
+pub(crate) fn number(value: f64) -> String {
     let text = format!("{value:.DECIMALS$}");
     let zero = (text.trim_start_matches('-').bytes()).all(|b| b == b'0' || b == b'.');
     if value.abs() >= 1e15 || (zero && value != 0.0) {

@@ -6,7 +6,7 @@
 //! `k`, unit normals, spotlight cosines, textures).
 
 mod build;
-mod dump;
+pub(crate) mod dump;
 
 pub use dump::dump;
 

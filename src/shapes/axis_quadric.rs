@@ -20,7 +20,7 @@
 //! arithmetic.
 
 use super::kernel::{Kernel, Steps, Tangent};
-use super::{AxisFrame, Invalid, Parameter, Ray, positive};
+use super::{AxisFrame, HitNote, Invalid, Notes, Parameter, Ray, Verdict, positive};
 use glam::DVec3;
 use num_traits::Float;
 
@@ -118,6 +118,13 @@ impl AxisQuadric {
     /// sphere's nearer root may be negative (a ray from inside).
     #[inline(always)]
     pub fn hit<K: Kernel>(&self, ray: &Ray) -> Option<f64> {
+        self.hit_noted::<K>(ray, &mut ())
+    }
+
+    /// [`AxisQuadric::hit`], telling `notes` why it decided as it did (`legacy-rt trace`;
+    /// with `()` the notes cost nothing).
+    #[inline(always)]
+    pub fn hit_noted<K: Kernel>(&self, ray: &Ray, notes: &mut impl Notes) -> Option<f64> {
         // Note 003: "transform the ray into the object's coordinate system": translate by
         // the base centre, rotate by rotmat. B' = rotmat (B - C), D' = rotmat D.
         let local = K::local_ray(&self.frame, ray);
@@ -127,17 +134,40 @@ impl AxisQuadric {
         let steps = Steps::new(self, ray, &local, abc);
         match self.rule {
             // The sphere: the smaller root of the discriminant > 0, even when negative.
-            RootRule::Nearer => K::nearer_distance(&steps, K::nearer_root(abc)?),
+            RootRule::Nearer => {
+                let Some(root) = K::nearer_root(abc) else {
+                    notes.note(HitNote::NoRealRoot);
+                    return None;
+                };
+                let t = K::nearer_distance(&steps, root);
+                notes.note(HitNote::Nearer { t });
+                t
+            }
             // "t = (-b ± sqrt(b² - 4ac)) / 2a", then "if the y of the hit is out of
             // bounds, try the other root": the smallest t > 0 whose y is within bounds.
             RootRule::FirstPositiveWithin { low, high } => {
-                let roots = K::roots(abc, Tangent::Counts)?;
+                let Some(roots) = K::roots(abc, Tangent::Counts) else {
+                    notes.note(HitNote::NoRealRoot);
+                    return None;
+                };
                 for (index, root) in roots.into_iter().enumerate() {
-                    if let Some((t, y)) = K::distance_and_height(&steps, root, index, (low, high))
-                        && self.rule.accepts(t, y, || K::bound_slack(&local, t))
-                    {
-                        return Some(t);
-                    }
+                    let (t, y) = match K::distance_and_height(&steps, root, index, (low, high)) {
+                        Ok((t, y)) if self.rule.accepts(t, y, || K::bound_slack(&local, t)) => {
+                            notes.note(HitNote::Root {
+                                t,
+                                y,
+                                verdict: Verdict::Counts,
+                            });
+                            return Some(t);
+                        }
+                        Ok(point) | Err(point) => point,
+                    };
+                    let verdict = if t <= 0.0 {
+                        Verdict::Behind
+                    } else {
+                        Verdict::OutOfBounds
+                    };
+                    notes.note(HitNote::Root { t, y, verdict });
                 }
                 None
             }

@@ -13,7 +13,7 @@
 //! ```
 
 use super::kernel::Kernel;
-use super::{Invalid, Parameter, PlaneFrame, Ray, positive};
+use super::{HitNote, Invalid, Notes, Parameter, PlaneFrame, Ray, positive};
 use glam::{DVec2, DVec3};
 
 /// A rectangle [0, width] x [0, height] of a plane frame, edges included.
@@ -55,9 +55,16 @@ impl FinitePlane {
     /// rectangle, edges included (spec §5.3).
     #[inline(always)]
     pub fn hit<K: Kernel>(&self, ray: &Ray) -> Option<f64> {
-        let t = K::plane(&self.frame.plane, ray)?;
+        self.hit_noted::<K>(ray, &mut ())
+    }
+
+    /// [`FinitePlane::hit`], telling `notes` why it decided as it did.
+    #[inline(always)]
+    pub fn hit_noted<K: Kernel>(&self, ray: &Ray, notes: &mut impl Notes) -> Option<f64> {
+        let t = self.frame.plane.hit_noted::<K>(ray, notes)?;
         let q = self.frame.plane_xy(ray.base + t * ray.dir);
         let inside = (0.0..=self.size.x).contains(&q.x) && (0.0..=self.size.y).contains(&q.y);
+        notes.note(HitNote::Rectangle { q, inside });
         inside.then_some(t)
     }
 }

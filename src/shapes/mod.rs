@@ -143,6 +143,86 @@ pub(crate) fn unit_or_zero_error(
     unit(v).ok_or(Invalid { parameter, error })
 }
 
+/// Why a shape's hit test decided as it did, for `legacy-rt trace`: the algorithms of
+/// [`AxisQuadric::hit`], [`Plane::hit`], [`FinitePlane::hit`] and [`Quadric::hit`] tell
+/// each decision to a [`Notes`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum HitNote {
+    /// The quadratic has no real root (for the sphere: a discriminant not > 0).
+    NoRealRoot,
+    /// The sphere's nearer root, `None` if it is not a finite number.
+    Nearer {
+        /// The distance.
+        t: Option<f64>,
+    },
+    /// A root of a quadric 21-24, its point's local y, and whether it counts.
+    Root {
+        /// The distance.
+        t: f64,
+        /// The local y of its point.
+        y: f64,
+        /// Counts, behind the base, or out of bounds.
+        verdict: Verdict,
+    },
+    /// A root of a `QUADRIC`.
+    QuadricRoot {
+        /// The distance.
+        t: f64,
+        /// Counts or behind the base.
+        verdict: Verdict,
+    },
+    /// The ray is parallel to a plane (N·D = 0).
+    Parallel,
+    /// A plane's t and the z of its point.
+    Plane {
+        /// The distance.
+        t: f64,
+        /// The z of the point.
+        z: f64,
+        /// Counts, behind the base, or beyond the screen.
+        verdict: Verdict,
+    },
+    /// Where a finite plane's hit lies in its own frame, and whether that is inside the
+    /// rectangle.
+    Rectangle {
+        /// (q.x, q.y) of spec §5.3.
+        q: glam::DVec2,
+        /// 0 <= q.x <= width and 0 <= q.y <= height.
+        inside: bool,
+    },
+}
+
+/// What a root or a plane's t came to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Verdict {
+    /// It is the hit.
+    Counts,
+    /// t <= 0: behind the ray's base.
+    Behind,
+    /// Its local y lies outside the shape's bounds (spec §5.6).
+    OutOfBounds,
+    /// Its point has z > 0: behind the screen (spec §5.1).
+    BeyondScreen,
+}
+
+/// Where the hit algorithms tell their decisions. `()` forgets them, and then they cost
+/// nothing.
+pub trait Notes {
+    /// One decision.
+    fn note(&mut self, note: HitNote);
+}
+
+impl Notes for () {
+    #[inline(always)]
+    fn note(&mut self, _: HitNote) {}
+}
+
+impl Notes for Vec<HitNote> {
+    fn note(&mut self, note: HitNote) {
+        self.push(note);
+    }
+}
+
 /// Where a ray meets a shape, for shading.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Surface {
@@ -198,6 +278,21 @@ impl Shape {
             Shape::Cone(s) => K::axis_quadric(&s.equation, ray),
             Shape::Hyperboloid(s) => K::axis_quadric(&s.equation, ray),
             Shape::Quadric(s) => K::quadric(s, ray),
+        }
+    }
+
+    /// [`Shape::hit_with`], telling `notes` why it decided as it did; the same t.
+    pub fn hit_noted<K: Kernel>(&self, ray: &Ray, notes: &mut impl Notes) -> Option<f64> {
+        match self {
+            Shape::Sphere(s) => s.equation.hit_noted::<K>(ray, notes),
+            Shape::Plane(s) => s.hit_noted::<K>(ray, notes),
+            Shape::FinitePlane(s) => s.hit_noted::<K>(ray, notes),
+            Shape::TiledPlane(s) => s.plane.hit_noted::<K>(ray, notes),
+            Shape::Paraboloid(s) => s.equation.hit_noted::<K>(ray, notes),
+            Shape::Cylinder(s) => s.equation.hit_noted::<K>(ray, notes),
+            Shape::Cone(s) => s.equation.hit_noted::<K>(ray, notes),
+            Shape::Hyperboloid(s) => s.equation.hit_noted::<K>(ray, notes),
+            Shape::Quadric(s) => s.hit_noted::<K>(ray, notes),
         }
     }
 

@@ -11,7 +11,7 @@
 //! (code 20, the procedural plane, adds a shader index line).
 
 use super::kernel::Kernel;
-use super::{Invalid, Parameter, Ray, unit_or_zero_error};
+use super::{HitNote, Invalid, Notes, Parameter, Ray, Verdict, unit_or_zero_error};
 use glam::DVec3;
 
 /// A plane through `point` with unit `normal`, used as given (never flipped, spec §4.4).
@@ -34,11 +34,29 @@ impl Plane {
     /// N·D = 0, t < 0, or the hit has z > 0.
     #[inline(always)]
     pub fn hit<K: Kernel>(&self, ray: &Ray) -> Option<f64> {
+        self.hit_noted::<K>(ray, &mut ())
+    }
+
+    /// [`Plane::hit`], telling `notes` why it decided as it did.
+    #[inline(always)]
+    pub fn hit_noted<K: Kernel>(&self, ray: &Ray, notes: &mut impl Notes) -> Option<f64> {
         // t = (N·Q - N·B) / N·D, a miss where N·D = 0.
-        let t = K::plane_distance(self, ray)?;
+        let Some(t) = K::plane_distance(self, ray) else {
+            notes.note(HitNote::Parallel);
+            return None;
+        };
         // Behind the base, or beyond the screen (z > 0), for every ray (spec §5.1).
         let z = ray.base.z + t * ray.dir.z;
-        (t >= 0.0 && (z <= 0.0 || z <= K::screen_slack(ray, t))).then_some(t)
+        // (A NaN t counts as behind.)
+        let verdict = if t.is_nan() || t < 0.0 {
+            Verdict::Behind
+        } else if z <= 0.0 || z <= K::screen_slack(ray, t) {
+            Verdict::Counts
+        } else {
+            Verdict::BeyondScreen
+        };
+        notes.note(HitNote::Plane { t, z, verdict });
+        (verdict == Verdict::Counts).then_some(t)
     }
 }
 

@@ -10,7 +10,7 @@
 
 use super::kernel::dd::{Dd, two_prod};
 use super::kernel::{Kernel, Steps, Tangent};
-use super::{Invalid, Parameter, Ray, unit};
+use super::{HitNote, Invalid, Notes, Parameter, Ray, Verdict, unit};
 use crate::error::MeaningError;
 use glam::{DMat3, DMat4, DVec3, DVec4};
 
@@ -125,18 +125,36 @@ impl Quadric {
     /// of the base.
     #[inline(always)]
     pub fn hit<K: Kernel>(&self, ray: &Ray) -> Option<f64> {
+        self.hit_noted::<K>(ray, &mut ())
+    }
+
+    /// [`Quadric::hit`], telling `notes` why it decided as it did.
+    #[inline(always)]
+    pub fn hit_noted<K: Kernel>(&self, ray: &Ray, notes: &mut impl Notes) -> Option<f64> {
         // The ray as P = (B, 1) + t (D, 0), moved next to the quadric where the kernel
         // does that.
         let local = K::quadric_ray(self, ray);
         // a = DᵀQD, b = 2 DᵀQP, c = PᵀQP.
         let abc = K::quadric_coefficients(self, &local);
         let steps = Steps::new(self, ray, &local, abc);
+        let Some(roots) = K::roots(abc, Tangent::Counts) else {
+            notes.note(HitNote::NoRealRoot);
+            return None;
+        };
         // The smallest positive root (a double root counts: a grazing ray touches).
-        for (index, root) in K::roots(abc, Tangent::Counts)?.into_iter().enumerate() {
-            if let Some(t) = K::quadric_distance(&steps, root, index)
-                && t > 0.0
-            {
-                return Some(t);
+        for (index, root) in roots.into_iter().enumerate() {
+            match K::quadric_distance(&steps, root, index) {
+                Ok(t) if t > 0.0 => {
+                    notes.note(HitNote::QuadricRoot {
+                        t,
+                        verdict: Verdict::Counts,
+                    });
+                    return Some(t);
+                }
+                Ok(t) | Err(t) => notes.note(HitNote::QuadricRoot {
+                    t,
+                    verdict: Verdict::Behind,
+                }),
             }
         }
         None

@@ -183,3 +183,28 @@ fn fenced_blocks_are_found_by_tag() {
     );
     assert_eq!(fenced_blocks(text, "scene-error"), vec!["12\n".to_string()]);
 }
+
+#[test]
+fn the_readme_s_trace_example_is_what_the_program_prints() {
+    let Some(dir) = super::common::course_scenes() else {
+        return;
+    };
+    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
+    let start = readme.find("### When your image differs").unwrap();
+    let section = &readme[start..];
+    let section = &section[..section.find("\n### ").unwrap()];
+    let scene = std::fs::read(dir.join("spec1.txt")).unwrap();
+    let output = super::common::run(&["trace", "250", "160"], &scene);
+    let trace = String::from_utf8(output.stdout).unwrap();
+    let lines: Vec<&str> = trace.lines().collect();
+    let blocks = fenced_blocks(section, "text");
+    assert!(blocks.len() >= 4, "{blocks:?}");
+    for block in &blocks[1..] {
+        for line in block.lines() {
+            assert!(
+                lines.contains(&line),
+                "README: `{line}` is not in the trace:\n{trace}"
+            );
+        }
+    }
+}

@@ -29,4 +29,6 @@ mod reliability;
 mod robustness;
 // A scene scaled by 1e-3 and 1e3 keeps its image.
 mod scale;
+// `trace` and the stages: trace bytes are image bytes; stage values from the formulas.
+mod trace;
 // scratch

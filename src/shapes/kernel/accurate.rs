@@ -186,7 +186,7 @@ impl Kernel for Accurate {
         root: Root,
         index: usize,
         (low, high): (f64, f64),
-    ) -> Option<(f64, f64)> {
+    ) -> Result<(f64, f64), (f64, f64)> {
         let Near { start, near, dir } = *steps.local;
         let (s, t) = (root.s, start.shift + root.s);
         let error = RootError {
@@ -199,9 +199,9 @@ impl Kernel for Accurate {
         let outside = (-t).max(low - y).max(y - high);
         let slack = Self::bound_slack(steps.local, t);
         if outside > 0.0 && error.clearly_beyond(outside, t, slack) {
-            return None;
+            return Err((t, y));
         }
-        Some(if error.needs_refining(t) {
+        Ok(if error.needs_refining(t) {
             refine_axis(steps, t, index)
         } else {
             (t, y)
@@ -265,7 +265,11 @@ impl Kernel for Accurate {
 
     /// Steps 2 and 3 for a root of a `QUADRIC`.
     #[inline(always)]
-    fn quadric_distance(steps: &Steps<Quadric, Self>, root: Root, index: usize) -> Option<f64> {
+    fn quadric_distance(
+        steps: &Steps<Quadric, Self>,
+        root: Root,
+        index: usize,
+    ) -> Result<f64, f64> {
         let (centred, local) = (&steps.shape.centred, *steps.local);
         let t = local.start.shift + root.s;
         let reach = root.s.abs() * local.dir.abs() + local.near.abs();
@@ -278,9 +282,9 @@ impl Kernel for Accurate {
             slope: root.slope,
         };
         if t < 0.0 && error.clearly_beyond(-t, t, 0.0) {
-            return None;
+            return Err(t);
         }
-        Some(if error.needs_refining(t) {
+        Ok(if error.needs_refining(t) {
             refine_quadric(steps, t, index)
         } else {
             t

@@ -93,15 +93,15 @@ pub trait Kernel: Copy + Default + Send + Sync + 'static {
     fn nearer_distance(steps: &Steps<AxisQuadric, Self>, root: Self::Root) -> Option<f64>;
 
     /// Root `index` (0 the smaller) of a bounded quadric as a distance along the world
-    /// ray and the local y of its point, polished where the kernel does that; `None`
-    /// where the root lies so far outside `bounds` (low, high) or behind the base that
-    /// no polishing could bring it back.
+    /// ray and the local y of its point, polished where the kernel does that; `Err`
+    /// (with the unpolished values) where the root lies so far outside `bounds`
+    /// (low, high) or behind the base that no polishing could bring it back.
     fn distance_and_height(
         steps: &Steps<AxisQuadric, Self>,
         root: Self::Root,
         index: usize,
         bounds: (f64, f64),
-    ) -> Option<(f64, f64)>;
+    ) -> Result<(f64, f64), (f64, f64)>;
 
     /// How far past a bound of local y a hit at `t` may lie and still count: the rounding
     /// of the coordinate, for a kernel that allows for it (0 for the others).
@@ -128,13 +128,13 @@ pub trait Kernel: Copy + Default + Send + Sync + 'static {
     fn quadric_coefficients(quadric: &Quadric, local: &Self::Local) -> Self::Coefficients;
 
     /// Root `index` of a `QUADRIC` as a distance along the world ray, polished where the
-    /// kernel does that; `None` where it lies so far behind the base that no polishing
-    /// could bring it in front.
+    /// kernel does that; `Err` (unpolished) where it lies so far behind the base that no
+    /// polishing could bring it in front.
     fn quadric_distance(
         steps: &Steps<Quadric, Self>,
         root: Self::Root,
         index: usize,
-    ) -> Option<f64>;
+    ) -> Result<f64, f64>;
 }
 
 /// Where a hit algorithm has got to, for a kernel's later steps: the shape, the world

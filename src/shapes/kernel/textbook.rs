@@ -206,8 +206,8 @@ where
         root: f64,
         _: usize,
         _: (f64, f64),
-    ) -> Option<(f64, f64)> {
-        Some((root, P::height(steps.local, root)))
+    ) -> Result<(f64, f64), (f64, f64)> {
+        Ok((root, P::height(steps.local, root)))
     }
 
     #[inline(always)]
@@ -226,7 +226,7 @@ where
     }
 
     #[inline(always)]
-    fn quadric_distance(_: &Steps<Quadric, Self>, root: f64, _: usize) -> Option<f64> {
-        Some(root)
+    fn quadric_distance(_: &Steps<Quadric, Self>, root: f64, _: usize) -> Result<f64, f64> {
+        Ok(root)
     }
 }

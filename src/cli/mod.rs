@@ -1,0 +1,256 @@
+//! The command line: its arguments, and the commands that run the library for them.
+
+pub mod interrupt;
+pub mod io;
+pub mod render;
+pub mod trace;
+
+use clap::{Parser, Subcommand};
+use legacy_rt::render::{DEFAULT_MAX_DIST, MAX_THREADS, Show, Stage};
+use legacy_rt::shapes::kernel::KernelChoice;
+use std::io::Write;
+use std::path::PathBuf;
+
+/// The largest image, in pixels (16384 x 16384), so that an absurd size is an error and
+/// not an allocation failure.
+const MAX_PIXELS: u64 = 1 << 28;
+
+const EXAMPLES: &str = "\
+Examples:
+  legacy-rt < scene.txt > image.ppm            640 wide, height from the world window
+  legacy-rt 800 600 < scene.txt > image.ppm    as the course's program was called
+  legacy-rt -o image.png < scene.txt           PNG (by the file's extension)
+  legacy-rt --max-dist 64 < scene.txt > image.ppm
+  legacy-rt --dump < scene.txt                 the typed scene, with precomputed values
+  legacy-rt --kernel textbook < s.txt > t.ppm  as a tracer using the notes' root formula
+  legacy-rt --threads 0 < scene.txt > image.ppm  on every core, same bytes
+  legacy-rt --stage diffuse < s.txt > d.ppm    the reference of the no-shadows assignment
+  legacy-rt --show normals < s.txt > n.ppm     normals as colours (also: objects, depth)
+  legacy-rt trace 320 240 < scene.txt          why pixel (320, 240) is what it is
+  legacy-rt trace 320 240 --format course < scene.txt   as the course's DBG_ output
+
+The scene is read from standard input; the image goes to standard output (or -o FILE);
+errors go to standard error with the line and column to fix, and then nothing at all is
+written to standard output. Texture file names in a scene are relative to the current
+folder. -o never leaves half an image: a new or regular file is replaced whole (keeping
+its permissions), a device or pipe is written in place, a read-only file is refused.
+
+Limits: a scene of at most 256 MiB and 1,000,000 records (lights and objects together);
+textures of at most 2^28 texels; images of at most 2^28 pixels (16384 x 16384); at most
+256 threads. Mirror bounces stop when the path is longer than --max-dist, so two mirrors
+facing each other a hair apart can take minutes: the progress bar shows it.
+
+Exit status: 0 when the image was written, 1 when the scene cannot be loaded or gives
+no image, 2 for a bad command line or an output that cannot be written.";
+
+/// Renders a scene file of the ray-tracing course exactly as the course's program did.
+///
+/// The scene format and the rendering rules are documented in docs/ and README.md.
+#[derive(Parser, Debug)]
+#[command(version, about, after_help = EXAMPLES, args_conflicts_with_subcommands = true)]
+pub struct Args {
+    /// Another command than rendering.
+    #[command(subcommand)]
+    pub command: Option<Command>,
+
+    /// The render's arguments.
+    #[command(flatten)]
+    pub render: RenderArgs,
+}
+
+/// The commands besides rendering.
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Print everything the renderer computes for one pixel, in order: the ray, every
+    /// object tested (by kind and line), the hit, the material, each light with its
+    /// shadow ray, the division by the distance, each mirror bounce, and last the
+    /// pixel's bytes
+    #[command(after_help = trace::EXAMPLES)]
+    Trace(trace::TraceArgs),
+}
+
+/// What rendering takes.
+#[derive(clap::Args, Debug)]
+pub struct RenderArgs {
+    /// Image width in pixels [default: 640]
+    #[arg(value_name = "W", value_parser = pixels)]
+    pub width: Option<u64>,
+
+    /// Image height in pixels [default: W times the world window's height / width, rounded]
+    #[arg(value_name = "H", value_parser = pixels)]
+    pub height: Option<u64>,
+
+    /// Write the image to FILE instead of standard output: PNG if FILE ends in .png, PPM
+    /// if it ends in .ppm or .pnm or has no extension
+    #[arg(short, long, value_name = "FILE")]
+    pub output: Option<PathBuf>,
+
+    /// Print the typed scene (every object with the values computed at load) instead of
+    /// rendering it
+    #[arg(long)]
+    pub dump: bool,
+
+    /// Render on N threads, at most 256; 0 means one per core. The image is the same bytes
+    /// for every N (1, the default, is the course program's single thread)
+    #[arg(long, value_name = "N", default_value_t = 1, value_parser = threads)]
+    pub threads: usize,
+
+    /// What the image is computed with.
+    #[command(flatten)]
+    pub how: HowArgs,
+}
+
+/// The options that rendering and `trace` share.
+#[derive(clap::Args, Debug, Clone, Copy)]
+pub struct HowArgs {
+    /// Paths of rays longer than D (eye to hit, summed over mirror bounces) are black
+    #[arg(long, value_name = "D", default_value_t = DEFAULT_MAX_DIST)]
+    pub max_dist: f64,
+
+    /// How hit distances are computed: accurate (within 4 ulps of the exact root),
+    /// stable (the notes' coefficients, cancellation-free roots), textbook (the notes'
+    /// (-b ± sqrt(b² - 4ac)) / 2a, as most students' tracers do), textbook-f32 (the same
+    /// in single precision). Render with textbook to see where a tracer's speckles and
+    /// missing pixels come from; see docs/speed-vs-error.md
+    #[arg(long, value_name = "KERNEL", default_value = "accurate", value_parser = kernel)]
+    pub kernel: KernelChoice,
+
+    /// The course's assignment to render the reference of: ambient (ambient only),
+    /// diffuse (ambient and diffuse, no shadow rays), shadows (with shadow rays, no
+    /// mirrors), full (the finished image)
+    #[arg(long, value_name = "STAGE", default_value = "full", value_parser = stage)]
+    pub stage: Stage,
+
+    /// A diagnostic image instead: normals (the normal at the first hit as a colour),
+    /// objects (each object its own colour; the legend goes to standard error), depth
+    /// (grey by the distance to the first hit; the mapping goes to standard error)
+    #[arg(long, value_name = "IMAGE", value_parser = show, conflicts_with = "stage")]
+    pub show: Option<Show>,
+}
+
+impl HowArgs {
+    /// The library's options for a `width` x `height` image.
+    pub fn options(&self, width: u64, height: u64) -> Result<legacy_rt::Options, Failure> {
+        if self.max_dist.is_nan() || self.max_dist <= 0.0 {
+            return Err(usage(format!(
+                "--max-dist must be greater than 0, found {}",
+                self.max_dist
+            )));
+        }
+        Ok(legacy_rt::Options {
+            max_dist: self.max_dist,
+            kernel: self.kernel,
+            stage: self.stage,
+            show: self.show,
+            ..legacy_rt::Options::new(width as usize, height as usize)
+        })
+    }
+}
+
+/// Parses W or H, and recognises the usual slip of naming the scene file there.
+pub fn pixels(text: &str) -> Result<u64, String> {
+    text.parse().map_err(|_| {
+        if std::path::Path::new(text).is_file() || text.ends_with(".txt") {
+            format!(
+                "the scene is read from standard input, not named: \
+                 legacy-rt < {text} > image.ppm"
+            )
+        } else {
+            "expected a whole number of pixels, such as 640".to_string()
+        }
+    })
+}
+
+/// Parses `--threads`, which is bounded so that a typo cannot start a thread storm.
+fn threads(text: &str) -> Result<usize, String> {
+    let limit = MAX_THREADS;
+    match text.parse::<usize>() {
+        Ok(n) if n <= limit => Ok(n),
+        Ok(_) => Err(format!(
+            "at most {limit} threads (0 means one per core: {} here)",
+            std::thread::available_parallelism().map_or(1, |n| n.get())
+        )),
+        Err(_) => Err("expected a whole number of threads, such as 4".to_string()),
+    }
+}
+
+/// Parses a `--kernel` name.
+fn kernel(name: &str) -> Result<KernelChoice, String> {
+    KernelChoice::from_name(name).ok_or_else(|| {
+        let names: Vec<_> = KernelChoice::ALL.iter().map(|k| k.name()).collect();
+        format!("expected one of: {}", names.join(", "))
+    })
+}
+
+/// Parses a `--stage` name.
+fn stage(name: &str) -> Result<Stage, String> {
+    let names: Vec<_> = Stage::ALL.iter().map(|s| s.name()).collect();
+    let found = Stage::ALL.into_iter().find(|s| s.name() == name);
+    found.ok_or_else(|| format!("expected one of: {}", names.join(", ")))
+}
+
+/// Parses a `--show` name.
+fn show(name: &str) -> Result<Show, String> {
+    let names: Vec<_> = Show::ALL.iter().map(|s| s.name()).collect();
+    let found = Show::ALL.into_iter().find(|s| s.name() == name);
+    found.ok_or_else(|| format!("expected one of: {}", names.join(", ")))
+}
+
+/// An error of the command line, the scene or the output, with its exit status.
+pub struct Failure(pub String, pub u8);
+
+/// Writes a line to standard error. A closed standard error (`2>&1 | head`) is no reason
+/// to fail, and `eprintln!` would panic there.
+pub fn say(message: &str) {
+    if !message.is_empty() {
+        let _ = writeln!(std::io::stderr().lock(), "{message}");
+    }
+}
+
+/// A failure caused by the scene: exit status 1, as for a scene that cannot be loaded.
+pub fn scene_failure(message: String) -> Failure {
+    Failure(format!("error: {message}"), 1)
+}
+
+/// A bad command line: exit status 2.
+pub fn usage(message: String) -> Failure {
+    Failure(
+        format!("error: {message}\n\nFor more information, try '--help'."),
+        2,
+    )
+}
+
+/// The image size: W and H as given, or derived from the world window (spec §1). A bad
+/// size the user typed is a command-line error (2); one derived from the scene is the
+/// scene's (1), and the message says how to give a size instead.
+pub fn size(
+    given: (Option<u64>, Option<u64>),
+    scene: &legacy_rt::Scene,
+) -> Result<(u64, u64), Failure> {
+    let (width, height) = match given {
+        (None, _) => scene.default_size(),
+        (Some(w), Some(h)) => (w, h),
+        (Some(w), None) => {
+            let h = (w as f64 * scene.window.y / scene.window.x).round();
+            (w, h.min(u64::MAX as f64) as u64)
+        }
+    };
+    let problem = if width < 2 || height < 2 {
+        format!(
+            "the image must be at least 2x2 pixels (the projection divides by W-1 and H-1), \
+             not {width}x{height}"
+        )
+    } else if width.saturating_mul(height) > MAX_PIXELS {
+        format!("{width}x{height} is more than the {MAX_PIXELS} pixels this program renders")
+    } else {
+        return Ok((width, height));
+    };
+    if given.1.is_some() {
+        return Err(usage(problem));
+    }
+    let (ww, wh) = (scene.window.x, scene.window.y);
+    Err(scene_failure(format!(
+        "{problem}: that size follows from the scene's world window, {ww} x {wh}; \
+         give both W and H on the command line, e.g. legacy-rt 640 480 < scene.txt"
+    )))
+}

@@ -1,0 +1,94 @@
+//! `legacy-rt trace X Y [W H]`: the trace of one pixel, readable or in the course's
+//! format, and with `-o` the image with that pixel marked.
+
+use super::io::{emit_to_stdout, read_scene};
+use super::render::{render_with_progress, write_image};
+use super::{Failure, HowArgs, interrupt, pixels, size, usage};
+use legacy_rt::image_output::file::OutputFile;
+use std::path::PathBuf;
+
+/// Examples for `trace --help`.
+pub const EXAMPLES: &str = "\
+Examples:
+  legacy-rt trace 320 240 < scene.txt                 pixel (320, 240) of the 640-wide image
+  legacy-rt trace 5 3 800 600 < scene.txt             pixel (5, 3) of an 800x600 image
+  legacy-rt trace 320 240 --format course < s.txt     the course's PIX/WRL/FND/HIT/AMB lines
+  legacy-rt trace 320 240 --stage diffuse < s.txt     as the no-shadows assignment computes it
+  legacy-rt trace 320 240 -o traced.png < s.txt       and the image, the pixel marked green
+
+(0, 0) is the lower-left pixel, as in the course (spec §4.1). The trace goes to standard
+output; its last line is `bytes: R G B`, the pixel's bytes in the image.";
+
+/// The trace's arguments.
+#[derive(clap::Args, Debug)]
+pub struct TraceArgs {
+    /// The pixel's column, 0 at the left
+    #[arg(value_name = "X")]
+    x: u64,
+
+    /// The pixel's row, 0 at the bottom
+    #[arg(value_name = "Y")]
+    y: u64,
+
+    /// Image width in pixels [default: 640]
+    #[arg(value_name = "W", value_parser = pixels)]
+    width: Option<u64>,
+
+    /// Image height in pixels [default: from the world window, as for rendering]
+    #[arg(value_name = "H", value_parser = pixels)]
+    height: Option<u64>,
+
+    /// readable (an indented tree of every step) or course (the course program's debug
+    /// lines, with its object ids: lights and objects numbered together from 0)
+    #[arg(long, value_name = "FORMAT", default_value = "readable", value_parser = ["readable", "course"])]
+    format: String,
+
+    /// Also write the image to FILE with the traced pixel painted green
+    #[arg(short, long, value_name = "FILE")]
+    output: Option<PathBuf>,
+
+    /// What the image is computed with.
+    #[command(flatten)]
+    how: HowArgs,
+}
+
+/// The colour of the marked pixel (the UCR course painted the traced pixel green).
+const MARK: [u8; 3] = [0, 255, 0];
+
+/// Traces the pixel of the scene on standard input.
+pub fn run(args: &TraceArgs) -> Result<(), Failure> {
+    let output = match &args.output {
+        Some(path) => {
+            Some(OutputFile::check(path).map_err(|error| Failure(format!("error: {error}"), 2))?)
+        }
+        None => None,
+    };
+    if output.is_some() {
+        interrupt::remove_partial_file_on_interrupt();
+    }
+    args.how.options(2, 2)?;
+    let text = read_scene()?;
+    let scene = legacy_rt::load(&text).map_err(|error| Failure(error.to_string(), 1))?;
+    let (width, height) = size((args.width, args.height), &scene)?;
+    if args.x >= width || args.y >= height {
+        return Err(usage(format!(
+            "pixel ({}, {}) is outside the {width}x{height} image: X must be below {width} \
+             and Y below {height}, with (0, 0) at the lower left",
+            args.x, args.y
+        )));
+    }
+    let options = args.how.options(width, height)?;
+    let (x, y) = (args.x as usize, args.y as usize);
+    let trace = legacy_rt::render::trace(&scene, &options, x, y).expect("the pixel is inside");
+    let text = match args.format.as_str() {
+        "course" => trace.course(&scene),
+        _ => trace.readable(&scene),
+    };
+    if let Some(output) = output {
+        let mut image = render_with_progress(&scene, &options);
+        let at = (height as usize - 1 - y) * width as usize + x;
+        image.pixels[at] = MARK;
+        write_image(&image, output.format, Some(output))?;
+    }
+    emit_to_stdout(text.as_bytes())
+}
