@@ -6,6 +6,7 @@ pub mod render;
 pub mod trace;
 
 use clap::{Parser, Subcommand};
+use legacy_rt::image_output::file::OutputFile;
 use legacy_rt::render::{DEFAULT_MAX_DIST, MAX_THREADS, Show, Stage};
 use legacy_rt::shapes::kernel::KernelChoice;
 use std::io::Write;
@@ -194,6 +195,17 @@ fn show(name: &str) -> Result<Show, String> {
     let names: Vec<_> = Show::ALL.iter().map(|s| s.name()).collect();
     let found = Show::ALL.into_iter().find(|s| s.name() == name);
     found.ok_or_else(|| format!("expected one of: {}", names.join(", ")))
+}
+
+/// `-o FILE` checked before anything is read or rendered, so that a bad name costs
+/// nothing and destroys nothing; an interrupt from then on removes the temporary file.
+pub fn output_file(path: Option<&std::path::Path>) -> Result<Option<OutputFile>, Failure> {
+    let Some(path) = path else {
+        return Ok(None);
+    };
+    let output = OutputFile::check(path).map_err(|error| Failure(format!("error: {error}"), 2))?;
+    interrupt::remove_partial_file_on_interrupt();
+    Ok(Some(output))
 }
 
 /// An error of the command line, the scene or the output, with its exit status.

@@ -2,7 +2,7 @@
 
 use super::interrupt;
 use super::io::{emit_to_stdout, read_scene};
-use super::{Failure, RenderArgs, say, size, usage};
+use super::{Failure, RenderArgs, output_file, say, size, usage};
 use legacy_rt::image_output::file::OutputFile;
 use legacy_rt::image_output::{self, Format};
 use legacy_rt::render::{self, Show, object_colour};
@@ -17,16 +17,7 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
                 .into(),
         ));
     }
-    // Checked before the render, so that a bad name costs nothing and destroys nothing.
-    let output = match &args.output {
-        Some(path) if !args.dump => {
-            Some(OutputFile::check(path).map_err(|error| Failure(format!("error: {error}"), 2))?)
-        }
-        _ => None,
-    };
-    if output.is_some() {
-        interrupt::remove_partial_file_on_interrupt();
-    }
+    let output = output_file(args.output.as_deref().filter(|_| !args.dump))?;
     // A bad option is found before the scene is read.
     args.how.options(2, 2)?;
     let text = read_scene()?;

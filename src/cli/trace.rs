@@ -3,8 +3,7 @@
 
 use super::io::{emit_to_stdout, read_scene};
 use super::render::{render_with_progress, write_image};
-use super::{Failure, HowArgs, interrupt, pixels, size, usage};
-use legacy_rt::image_output::file::OutputFile;
+use super::{Failure, HowArgs, output_file, pixels, size, usage};
 use std::path::PathBuf;
 
 /// Examples for `trace --help`.
@@ -57,15 +56,7 @@ const MARK: [u8; 3] = [0, 255, 0];
 
 /// Traces the pixel of the scene on standard input.
 pub fn run(args: &TraceArgs) -> Result<(), Failure> {
-    let output = match &args.output {
-        Some(path) => {
-            Some(OutputFile::check(path).map_err(|error| Failure(format!("error: {error}"), 2))?)
-        }
-        None => None,
-    };
-    if output.is_some() {
-        interrupt::remove_partial_file_on_interrupt();
-    }
+    let output = output_file(args.output.as_deref())?;
     args.how.options(2, 2)?;
     let text = read_scene()?;
     let scene = legacy_rt::load(&text).map_err(|error| Failure(error.to_string(), 1))?;

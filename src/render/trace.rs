@@ -315,6 +315,16 @@ fn light_name(scene: &Scene, index: usize) -> String {
     format!("light {} ({kind}, line {})", index + 1, light.line)
 }
 
+/// What a root or a plane's t came to, in words.
+fn verdict_words(verdict: Verdict) -> &'static str {
+    match verdict {
+        Verdict::Counts => "counts",
+        Verdict::Behind => "behind the base (t <= 0)",
+        Verdict::OutOfBounds => "out of bounds",
+        Verdict::BeyondScreen => "behind the screen (z > 0)",
+    }
+}
+
 /// Why a test came to what it did, in words.
 fn reasons(notes: &[HitNote]) -> String {
     let reason = |note: &HitNote| match *note {
@@ -323,27 +333,14 @@ fn reasons(notes: &[HitNote]) -> String {
         HitNote::Nearer { t: Some(t) } => format!("nearer root t = {}", number(t)),
         HitNote::Nearer { t: None } => "nearer root not a number".to_string(),
         HitNote::Root { t, y, verdict } => {
-            let what = match verdict {
-                Verdict::Counts => "in bounds",
-                Verdict::Behind => "behind the base (t <= 0)",
-                _ => "out of bounds",
-            };
+            let what = verdict_words(verdict);
             format!("root t = {}, local y {}: {what}", number(t), number(y))
         }
         HitNote::QuadricRoot { t, verdict } => {
-            let what = if verdict == Verdict::Counts {
-                "in front"
-            } else {
-                "behind the base (t <= 0)"
-            };
-            format!("root t = {}: {what}", number(t))
+            format!("root t = {}: {}", number(t), verdict_words(verdict))
         }
         HitNote::Plane { t, z, verdict } => {
-            let what = match verdict {
-                Verdict::Counts => "counts",
-                Verdict::Behind => "behind the base (t < 0)",
-                _ => "behind the screen (z > 0)",
-            };
+            let what = verdict_words(verdict);
             format!("t = {}, z = {}: {what}", number(t), number(z))
         }
         HitNote::Rectangle { q, inside } => {
