@@ -319,7 +319,7 @@ fn light_name(scene: &Scene, index: usize) -> String {
 fn verdict_words(verdict: Verdict) -> &'static str {
     match verdict {
         Verdict::Counts => "counts",
-        Verdict::Behind => "behind the base (t <= 0)",
+        Verdict::Behind => "behind the ray's base",
         Verdict::OutOfBounds => "out of bounds",
         Verdict::BeyondScreen => "behind the screen (z > 0)",
     }
