@@ -150,12 +150,14 @@ impl Camera {
     }
 
     /// The world point of pixel (x, y), (0, 0) at the lower left (spec §4.1).
+    #[inline]
     fn world(&self, x: usize, y: usize) -> DVec3 {
         DVec3::new(self.xs[x], self.ys[y], 0.0)
     }
 
     /// The ray through pixel (x, y); `None` if the viewpoint is the pixel's own world
     /// point (no direction).
+    #[inline]
     fn ray(&self, x: usize, y: usize) -> Option<Ray> {
         let target = self.world(x, y);
         let dir = unit(target - self.viewpoint)?;
