@@ -32,11 +32,12 @@ const LEAF_SIZE: usize = 1;
 
 /// The depth below which splits are at the median rather than by the surface area
 /// heuristic. Real scenes' trees are far shallower; this only bounds degenerate ones.
-const SAH_DEPTH: usize = 64;
+const SAH_DEPTH: usize = 31;
 
 /// The deepest a tree can be: `SAH_DEPTH` levels of any split, then median splits, which
 /// halve the objects at each level (and there are fewer than 2^32 of them, as indices are
-/// `u32`).
+/// `u32`). The traversal's stack then has 64 entries, a size the compiler clears without
+/// a call to `memset`.
 const MAX_DEPTH: usize = SAH_DEPTH + 32;
 
 /// An axis-aligned box.
@@ -199,16 +200,23 @@ impl Bvh {
     }
 
     /// The closest hit (smallest t, ties to the lower index) among the objects for which
-    /// `test` gives a distance; `test` applies the caller's filters (t > 0, the skipped
-    /// object).
+    /// `test` gives a distance that `counts` accepts; `test` skips the caller's skipped
+    /// object, and `counts` (t > 0, inside the object's box) is asked only of a hit
+    /// that would win.
     #[inline]
-    pub fn closest(&self, ray: &Ray, test: impl Fn(usize) -> Option<f64>) -> Option<(usize, f64)> {
+    pub fn closest(
+        &self,
+        ray: &Ray,
+        test: impl Fn(usize) -> Option<f64>,
+        counts: impl Fn(usize, f64) -> bool,
+    ) -> Option<(usize, f64)> {
         let mut best: Option<(usize, f64)> = None;
         self.walk(ray, |objects| {
             for &index in objects {
                 let index = index as usize;
                 if let Some(t) = test(index)
                     && best.is_none_or(|(i, b)| t < b || (t == b && index < i))
+                    && counts(index, t)
                 {
                     best = Some((index, t));
                 }

@@ -327,13 +327,11 @@ impl<'a, K: Kernel> Tracer<'a, K> {
         if let Some(bvh) = &self.bvh
             && !R::ENABLED
         {
-            return bvh.closest(ray, |index| {
-                if Some(index) == last_hit {
-                    return None;
-                }
-                let t = self.scene.objects[index].shape.hit_with::<K>(ray)?;
-                counts(index, t).then_some(t)
-            });
+            let test = |index: usize| {
+                let shape = &self.scene.objects[index].shape;
+                (Some(index) != last_hit).then(|| shape.hit_with::<K>(ray))?
+            };
+            return bvh.closest(ray, test, counts);
         }
         let mut best: Option<(usize, f64)> = None;
         for (index, object) in self.scene.objects.iter().enumerate() {
