@@ -285,7 +285,7 @@ impl Kernel for Accurate {
             return Err(t);
         }
         Ok(if error.needs_refining(t) {
-            refine_quadric(steps, t, index)
+            refine_quadric(steps.shape, steps.ray, steps.abc.0, t, index)
         } else {
             t
         })
@@ -343,8 +343,8 @@ fma_dispatch!(
 );
 fma_dispatch!(
     /// [`refine_quadric_any`], kept out of line.
-    fn refine_quadric(steps: &Steps<Quadric, Accurate>, t0: f64, index: usize) -> f64 {
-        refine_quadric_any(steps, t0, index)
+    fn refine_quadric(quadric: &Quadric, ray: &Ray, a: f64, t0: f64, index: usize) -> f64 {
+        refine_quadric_any(quadric, ray, a, t0, index)
     }
 );
 
@@ -676,8 +676,7 @@ fn refine_axis_any(steps: &Steps<AxisQuadric, Accurate>, t0: f64, index: usize) 
 
 /// Refines root `index` of a general quadric: f(t) = pᵀQp with p = (B + tD, 1).
 #[inline(always)]
-fn refine_quadric_any(steps: &Steps<Quadric, Accurate>, t0: f64, index: usize) -> f64 {
-    let (quadric, ray, a) = (steps.shape, steps.ray, steps.abc.0);
+fn refine_quadric_any(quadric: &Quadric, ray: &Ray, a: f64, t0: f64, index: usize) -> f64 {
     let [qa, qb, qc, qd, qe, qf, qg, qh, qi, qj] = quadric.coefficients;
     let dir = ray.dir.extend(0.0);
     let mut t = t0;
