@@ -117,21 +117,10 @@ fn help_teaches_the_usage_with_examples() {
 
 #[test]
 fn a_closed_pipe_ends_quietly() {
-    use std::io::{Read, Write};
-    use std::process::{Command, Stdio};
-    let mut child = Command::new(env!("CARGO_BIN_EXE_legacy-rt"))
-        .args(["1200", "900"])
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    child
-        .stdin
-        .take()
-        .unwrap()
-        .write_all(DEBUG.as_bytes())
-        .unwrap();
+    use std::io::Read;
+    use std::process::Stdio;
+    let args = ["1200", "900"];
+    let mut child = super::common::start(&args, DEBUG.as_bytes(), Stdio::piped(), Stdio::piped());
     let mut first = [0u8; 2];
     child.stdout.take().unwrap().read_exact(&mut first).unwrap();
     // stdout is dropped here: the rest of the image meets a closed pipe.

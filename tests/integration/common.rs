@@ -2,21 +2,28 @@
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
+use std::process::{Child, Command, Output, Stdio};
 
-/// Runs the `legacy-rt` binary with `args`, feeding `stdin`.
-pub fn run(args: &[&str], stdin: &[u8]) -> Output {
+/// Starts the `legacy-rt` binary with `args`, writes `stdin` to it and closes it, with
+/// standard output and standard error as given.
+pub fn start(args: &[&str], stdin: &[u8], stdout: Stdio, stderr: Stdio) -> Child {
     let mut child = Command::new(env!("CARGO_BIN_EXE_legacy-rt"))
         .args(args)
         .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
+        .stdout(stdout)
+        .stderr(stderr)
         .spawn()
         .expect("the binary starts");
     let mut input = child.stdin.take().unwrap();
     // The program may stop reading early (e.g. on --help); a broken pipe is fine then.
     let _ = input.write_all(stdin);
     drop(input);
+    child
+}
+
+/// Runs the `legacy-rt` binary with `args`, feeding `stdin`.
+pub fn run(args: &[&str], stdin: &[u8]) -> Output {
+    let child = start(args, stdin, Stdio::piped(), Stdio::piped());
     child.wait_with_output().expect("the binary runs")
 }
 

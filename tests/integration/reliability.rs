@@ -2,7 +2,7 @@
 //! run the way that broke it, must now render or fail cleanly with the right status, and
 //! must never destroy what `-o` names.
 
-use super::common::run;
+use super::common::{run, start};
 use std::io::{Read, Write};
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Output, Stdio};
@@ -193,20 +193,15 @@ fn an_interrupt_while_writing_leaves_no_temporary_file() {
     let target = dir.join("big.ppm");
     let mut caught = 0;
     for _ in 0..20 {
-        let mut child = Command::new(env!("CARGO_BIN_EXE_legacy-rt"))
-            .args(["6000", "4000", "--max-dist", "1", "-o"])
-            .arg(&target)
-            .stdin(Stdio::piped())
-            .stdout(Stdio::null())
-            .stderr(Stdio::null())
-            .spawn()
-            .unwrap();
-        child
-            .stdin
-            .take()
-            .unwrap()
-            .write_all(SCENE.as_bytes())
-            .unwrap();
+        let args = [
+            "6000",
+            "4000",
+            "--max-dist",
+            "1",
+            "-o",
+            target.to_str().unwrap(),
+        ];
+        let mut child = start(&args, SCENE.as_bytes(), Stdio::null(), Stdio::null());
         let partial = loop {
             if let Some(status) = child.try_wait().unwrap() {
                 assert!(status.success());
@@ -294,19 +289,12 @@ fn a_fifo_named_as_a_texture_is_an_error_not_a_hang() {
         "8 6\n0 0 3\n17\n1 1 1\n1 1 1\n0 0 0\n0 0 1\n-1 -1 -5\n1 0 0\n2 2\n{}\n1\n",
         fifo.display()
     );
-    let mut child = Command::new(env!("CARGO_BIN_EXE_legacy-rt"))
-        .args(["16", "12"])
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    child
-        .stdin
-        .take()
-        .unwrap()
-        .write_all(scene.as_bytes())
-        .unwrap();
+    let child = start(
+        &["16", "12"],
+        scene.as_bytes(),
+        Stdio::piped(),
+        Stdio::piped(),
+    );
     let output = wait_at_most(child, Duration::from_secs(30)).expect("the load finishes");
     assert_eq!(output.status.code(), Some(1));
     assert!(
