@@ -13,6 +13,17 @@ fn bytes(scene: &legacy_rt::Scene, options: &Options) -> Vec<u8> {
     legacy_rt::image_output::ppm(&render(scene, options, |_| {}).0)
 }
 
+/// The PPM of `scene` at `width` x `height` with the hierarchy and with the linear scan.
+fn with_and_without_bvh(scene: &legacy_rt::Scene, width: usize, height: usize) -> [Vec<u8>; 2] {
+    [true, false].map(|accelerate| {
+        let options = Options {
+            accelerate,
+            ..Options::new(width, height)
+        };
+        bytes(scene, &options)
+    })
+}
+
 /// Every example scene, every course scene and the generated family at 10 and 300
 /// objects.
 fn scenes() -> Vec<(String, legacy_rt::Scene)> {
@@ -51,16 +62,9 @@ fn threads_1_and_4_give_identical_bytes() {
 fn the_bvh_gives_the_linear_scan_s_image() {
     let mut accelerated = 0;
     for (name, scene) in scenes() {
-        let linear = Options {
-            accelerate: false,
-            ..Options::new(96, 72)
-        };
-        let bvh = Options {
-            accelerate: true,
-            ..linear
-        };
         accelerated += usize::from(legacy_rt::render::Bvh::new(&scene).is_some());
-        assert!(bytes(&scene, &linear) == bytes(&scene, &bvh), "{name}");
+        let [bvh, linear] = with_and_without_bvh(&scene, 96, 72);
+        assert!(bvh == linear, "{name}");
     }
     // The comparison means something only where a tree is built.
     assert!(accelerated >= 2, "{accelerated} scenes with a BVH");
@@ -97,16 +101,8 @@ fn a_lopsided_hierarchy_renders_as_the_linear_scan() {
     }
     let scene = legacy_rt::load(&text).unwrap();
     assert!(legacy_rt::render::Bvh::new(&scene).is_some());
-    let linear = Options {
-        accelerate: false,
-        ..Options::new(64, 48)
-    };
-    let bvh = Options {
-        accelerate: true,
-        ..linear
-    };
-    let image = bytes(&scene, &bvh);
-    assert!(image == bytes(&scene, &linear));
+    let [image, linear] = with_and_without_bvh(&scene, 64, 48);
+    assert!(image == linear);
     // The nearest spheres are in view: the image is not all black.
     assert!(image[b"P6 64 48 255\n".len()..].iter().any(|&b| b > 0));
 }
@@ -134,14 +130,7 @@ fn shapes_thinner_than_their_rounding_give_the_linear_scan_s_image() {
     for shape in thin {
         let scene = legacy_rt::load(&format!("8 6\n0 0 3\n{spheres}{shape}")).unwrap();
         assert!(legacy_rt::render::Bvh::new(&scene).is_some());
-        let linear = Options {
-            accelerate: false,
-            ..Options::new(32, 24)
-        };
-        let bvh = Options {
-            accelerate: true,
-            ..linear
-        };
-        assert!(bytes(&scene, &linear) == bytes(&scene, &bvh), "{shape}");
+        let [bvh, linear] = with_and_without_bvh(&scene, 32, 24);
+        assert!(bvh == linear, "{shape}");
     }
 }
