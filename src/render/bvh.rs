@@ -9,8 +9,8 @@
 //! traversal's box tests: a kernel's t for a shape thinner than the rounding of its
 //! coordinates (a paraboloid of height 1e-21) can lie far outside the shape, and the
 //! tree must not skip what the scan would take. For ordinary shapes every hit lies well
-//! inside its box, so the test changes nothing there. Unbounded objects (planes, tiled planes, `QUADRIC` records) have no
-//! box and are tested for every ray, as before.
+//! inside its box, so the test changes nothing there. Unbounded objects (planes, tiled
+//! planes, `QUADRIC` records) have no box and are tested for every ray.
 //!
 //! The tree is built once per render. Each split is chosen along the longest axis of the
 //! centroids by the binned surface area heuristic, which can make a lopsided tree (700

@@ -3,7 +3,9 @@
 //! [`render`] casts one ray per pixel through the world window (§4.1) and [`ray_trace`]
 //! follows it: the closest hit (§4.6), ambient plus the diffuse light of every lamp that
 //! the hit point sees (§4.3), divided by the distance travelled so far (§4.2), plus the
-//! mirror reflection weighted by the specular triple (§4.5).
+//! mirror reflection weighted by the specular triple (§4.5). The stage (spec §7.2) leaves
+//! parts of that out, `--show` replaces it by a diagnostic colour, and [`trace`] records
+//! every step of one pixel through the same functions ([`trace::Recorder`]).
 
 mod bvh;
 mod shading;
