@@ -4,7 +4,7 @@
 //! follows it: the closest hit (§4.6), ambient plus the diffuse light of every lamp that
 //! the hit point sees (§4.3), divided by the distance travelled so far (§4.2), plus the
 //! mirror reflection weighted by the specular triple (§4.5). The stage (spec §7.2) leaves
-//! parts of that out, `--show` replaces it by a diagnostic colour, and [`trace`] records
+//! parts of that out, `--show` replaces it by a diagnostic colour, and [`trace()`] records
 //! every step of one pixel through the same functions ([`trace::Recorder`]).
 
 mod bvh;
