@@ -470,7 +470,7 @@ impl Trace {
                 None => line("  closest: nothing: black".to_string()),
             },
             Event::Surface {
-                object: _,
+                object,
                 t: _,
                 total_dist,
                 surface,
@@ -483,6 +483,14 @@ impl Trace {
                     vector(surface.normal),
                     number(*total_dist)
                 ));
+                // The quadrics 21-24 in their own frame, where the bounds are tested.
+                if let Some(frame) = scene.objects[*object].shape.axis_frame() {
+                    let local = frame.point_to_local(surface.point);
+                    line(format!(
+                        "  local hit point {} (rotmat (H - C))",
+                        vector(local)
+                    ));
+                }
                 line(format!("  material: {}", pattern_words(pattern)));
                 line(format!(
                     "    ambient {}, diffuse {}, specular {}",

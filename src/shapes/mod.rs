@@ -296,6 +296,17 @@ impl Shape {
         }
     }
 
+    /// The local frame of a quadric 21-24 (spec §5.6), `None` for the other shapes.
+    pub fn axis_frame(&self) -> Option<&AxisFrame> {
+        match self {
+            Shape::Paraboloid(s) => Some(&s.equation.frame),
+            Shape::Cylinder(s) => Some(&s.equation.frame),
+            Shape::Cone(s) => Some(&s.equation.frame),
+            Shape::Hyperboloid(s) => Some(&s.equation.frame),
+            _ => None,
+        }
+    }
+
     /// An axis-aligned box (min, max) that holds every hit this shape can report, or
     /// `None` for the unbounded ones: planes, tiled and procedural planes, `QUADRIC`.
     pub fn bounds(&self) -> Option<(DVec3, DVec3)> {
