@@ -258,6 +258,18 @@ pub enum MeaningError {
         /// What went wrong.
         reason: String,
     },
+    /// A record the builder reads differently from how the reader read it: a mistake in
+    /// this program, reported instead of a crash.
+    #[error(
+        "internal error: the {record} record has no {label} line as this program reads it; \
+         please report this, with the scene file"
+    )]
+    Internal {
+        /// Record name.
+        record: &'static str,
+        /// The group the builder asked for.
+        label: &'static str,
+    },
     /// A `QUADRIC` whose ten coefficients are all zero.
     #[error("all ten coefficients of the QUADRIC are zero, so it describes no surface")]
     ZeroQuadric,

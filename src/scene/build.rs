@@ -68,16 +68,38 @@ pub(super) fn build(text: SceneText) -> Result<Scene, Pending> {
 }
 
 fn build_scene(text: SceneText) -> Result<Scene, Pending> {
-    let window = pair(&text.window);
+    // The reader reads the header's 2 and 3 numbers or fails; a shortfall here would be
+    // this program's mistake, reported as one.
+    let header = |group: &Group| {
+        let (at, label) = (group.at, group.label);
+        move || {
+            Pending::new(
+                at,
+                MeaningError::Internal {
+                    record: "header",
+                    label,
+                },
+            )
+        }
+    };
+    let window = DVec2::from_array(text.window.values().ok_or_else(header(&text.window))?);
+    let viewpoint = text
+        .viewpoint
+        .values()
+        .ok_or_else(header(&text.viewpoint))?;
     let header_error = |index: usize| {
-        let at = text.window.numbers()[index].at;
+        let at = text
+            .window
+            .numbers()
+            .get(index)
+            .map_or(text.window.at, |n| n.at);
         move |error| Pending::new(at, error)
     };
     positive("world window", "width", window.x).map_err(header_error(0))?;
     positive("world window", "height", window.y).map_err(header_error(1))?;
     let mut scene = Scene {
         window,
-        viewpoint: vec3(&text.viewpoint),
+        viewpoint: DVec3::from_array(viewpoint),
         lights: Vec::new(),
         objects: Vec::new(),
     };
@@ -96,57 +118,70 @@ fn build_scene(text: SceneText) -> Result<Scene, Pending> {
 
 /// The place of the number a constructor complained about.
 fn locate(record: &Record, refusal: Refusal) -> Pending {
-    let at = if refusal.label == COEFFICIENTS {
-        record.coefficients[refusal.index].at
+    let numbers = if refusal.label == COEFFICIENTS {
+        &record.coefficients[..]
     } else {
-        let group = record.group(refusal.label);
-        group
-            .numbers()
-            .get(refusal.index)
-            .map_or(group.at, |n| n.at)
+        record.group(refusal.label).map_or(&[][..], |g| g.numbers())
     };
+    let group_at = record.group(refusal.label).map_or(record.at, |g| g.at);
+    let at = numbers.get(refusal.index).map_or(group_at, |n| n.at);
     Pending::new(at, refusal.error)
 }
 
-fn vec3(group: &Group) -> DVec3 {
-    let n = group.numbers();
-    DVec3::new(n[0].value, n[1].value, n[2].value)
+/// The first `N` numbers of group `label` of `record`. The reader reads every group of the
+/// record's layout, so a missing one is this program's mistake, reported as one.
+fn values<const N: usize>(record: &Record, label: &'static str) -> Result<[f64; N], Refusal> {
+    let values = record.group(label).and_then(Group::values::<N>);
+    values.ok_or(Refusal {
+        label,
+        index: 0,
+        error: MeaningError::Internal {
+            record: record.layout.name,
+            label,
+        },
+    })
 }
 
-fn pair(group: &Group) -> DVec2 {
-    let n = group.numbers();
-    DVec2::new(n[0].value, n[1].value)
+fn vec3(record: &Record, label: &'static str) -> Result<DVec3, Refusal> {
+    values::<3>(record, label).map(DVec3::from_array)
 }
 
-fn scalar(group: &Group) -> f64 {
-    group.numbers()[0].value
+fn pair(record: &Record, label: &'static str) -> Result<DVec2, Refusal> {
+    values::<2>(record, label).map(DVec2::from_array)
+}
+
+fn scalar(record: &Record, label: &'static str) -> Result<f64, Refusal> {
+    values::<1>(record, label).map(|[value]| value)
 }
 
 /// Normal, point and x direction of a framed plane (15, 16, 17).
-fn frame_vectors(record: &Record) -> (DVec3, DVec3, DVec3) {
-    let [normal, point, xdir] = [NORMAL, POINT, XDIR].map(|l| vec3(record.group(l)));
-    (normal, point, xdir)
+fn frame_vectors(record: &Record) -> Result<(DVec3, DVec3, DVec3), Refusal> {
+    Ok((
+        vec3(record, NORMAL)?,
+        vec3(record, POINT)?,
+        vec3(record, XDIR)?,
+    ))
 }
 
-fn material(record: &Record, labels: [&str; 3]) -> Material {
-    let [ambient, diffuse, specular] = labels.map(|l| vec3(record.group(l)));
-    Material {
-        ambient,
-        diffuse,
-        specular,
-    }
+fn material(record: &Record, labels: [&'static str; 3]) -> Result<Material, Refusal> {
+    let [ambient, diffuse, specular] = labels;
+    Ok(Material {
+        ambient: vec3(record, ambient)?,
+        diffuse: vec3(record, diffuse)?,
+        specular: vec3(record, specular)?,
+    })
 }
 
 fn light(record: &Record) -> Result<Light, Refusal> {
-    let emissivity = vec3(record.group(EMISSIVITY));
-    let location = vec3(record.group(LOCATION));
+    let emissivity = vec3(record, EMISSIVITY)?;
+    let location = vec3(record, LOCATION)?;
     let beam = if record.layout.code == 11 {
-        let direction = unit(vec3(record.group(AIM)) - location).ok_or(Refusal {
+        let direction = unit(vec3(record, AIM)? - location).ok_or(Refusal {
             label: AIM,
             index: 0,
             error: MeaningError::AimAtLocation,
         })?;
-        let half_angle = scalar(record.group(HALF_ANGLE));
+        let half_angle = scalar(record, HALF_ANGLE)?;
         if !(half_angle > 0.0 && half_angle < 180.0) {
             let error = MeaningError::SpotAngle { value: half_angle };
             return Err(Refusal::of(HALF_ANGLE, 0)(error));
@@ -169,7 +204,7 @@ fn light(record: &Record) -> Result<Light, Refusal> {
 
 /// A shader index, truncated to an integer (spec §5.5).
 fn shader(record: &Record) -> Result<Shader, Refusal> {
-    let value = scalar(record.group(SHADER));
+    let value = scalar(record, SHADER)?;
     match value.trunc() {
         0.0 => Ok(Shader::Stripes),
         1.0 => Ok(Shader::ColourWheel),
@@ -182,13 +217,12 @@ fn shader(record: &Record) -> Result<Shader, Refusal> {
 
 fn object(record: &Record) -> Result<Object, Refusal> {
     let name = record.layout.name;
-    let group = |label| record.group(label);
     let mut pattern = Pattern::Plain;
     let refused = Refusal::of_shape(record.layout.code);
     let shape = match record.layout.code {
         13 | 19 => {
-            let centre = vec3(group(CENTRE));
-            let sphere = Sphere::new(centre, scalar(group(RADIUS)), name).map_err(&refused)?;
+            let centre = vec3(record, CENTRE)?;
+            let sphere = Sphere::new(centre, scalar(record, RADIUS)?, name).map_err(&refused)?;
             if record.layout.code == 19 {
                 let shader = shader(record)?;
                 pattern = Pattern::Shader {
@@ -199,8 +233,8 @@ fn object(record: &Record) -> Result<Object, Refusal> {
             Shape::Sphere(sphere)
         }
         14 | 20 => {
-            let point = vec3(group(POINT));
-            let plane = Plane::new(vec3(group(NORMAL)), point, name).map_err(&refused)?;
+            let point = vec3(record, POINT)?;
+            let plane = Plane::new(vec3(record, NORMAL)?, point, name).map_err(&refused)?;
             if record.layout.code == 20 {
                 let shader = shader(record)?;
                 pattern = Pattern::Shader {
@@ -211,45 +245,45 @@ fn object(record: &Record) -> Result<Object, Refusal> {
             Shape::Plane(plane)
         }
         15 | 17 => {
-            let (normal, point, xdir) = frame_vectors(record);
-            let plane =
-                FinitePlane::new(normal, point, xdir, pair(group(SIZE)), name).map_err(&refused)?;
+            let (normal, point, xdir) = frame_vectors(record)?;
+            let plane = FinitePlane::new(normal, point, xdir, pair(record, SIZE)?, name)
+                .map_err(&refused)?;
             if record.layout.code == 17 {
                 pattern = texture(record, plane.size)?;
             }
             Shape::FinitePlane(plane)
         }
         16 => {
-            let (normal, point, xdir) = frame_vectors(record);
+            let (normal, point, xdir) = frame_vectors(record)?;
             let frame = PlaneFrame::new(normal, point, xdir, name).map_err(&refused)?;
-            let tile = pair(group(TILE_SIZE));
+            let tile = pair(record, TILE_SIZE)?;
             positive(name, "tile width", tile.x).map_err(Refusal::of(TILE_SIZE, 0))?;
             positive(name, "tile height", tile.y).map_err(Refusal::of(TILE_SIZE, 1))?;
-            let background = material(record, [BACK_AMBIENT, BACK_DIFFUSE, BACK_SPECULAR]);
+            let background = material(record, [BACK_AMBIENT, BACK_DIFFUSE, BACK_SPECULAR])?;
             pattern = Pattern::Tiles { tile, background };
             Shape::TiledPlane(frame)
         }
         21..=24 => {
-            let [r, h] = pair(group(if record.layout.code == 24 {
+            let code = record.layout.code;
+            let size = if code == 24 {
                 END_RADIUS_HALF_HEIGHT
             } else {
                 RADIUS_HEIGHT
-            }))
-            .to_array();
-            let line = vec3(group(CENTRE_LINE));
-            let first = |label| vec3(group(label));
-            match record.layout.code {
-                21 => {
-                    Shape::Paraboloid(Paraboloid::new(first(VERTEX), line, r, h).map_err(&refused)?)
-                }
-                22 => Shape::Cylinder(Cylinder::new(first(BASE), line, r, h).map_err(&refused)?),
-                23 => Shape::Cone(Cone::new(first(APEX), line, r, h).map_err(&refused)?),
+            };
+            let [r, h] = values::<2>(record, size)?;
+            let line = vec3(record, CENTRE_LINE)?;
+            let first = vec3(
+                record,
+                [VERTEX, BASE, APEX, WAIST_CENTRE][code as usize - 21],
+            )?;
+            match code {
+                21 => Shape::Paraboloid(Paraboloid::new(first, line, r, h).map_err(&refused)?),
+                22 => Shape::Cylinder(Cylinder::new(first, line, r, h).map_err(&refused)?),
+                23 => Shape::Cone(Cone::new(first, line, r, h).map_err(&refused)?),
                 _ => {
-                    let waist = scalar(group(WAIST_RADIUS));
-                    Shape::Hyperboloid(
-                        Hyperboloid::new(first(WAIST_CENTRE), line, r, h, waist)
-                            .map_err(&refused)?,
-                    )
+                    let waist = scalar(record, WAIST_RADIUS)?;
+                    let shape = Hyperboloid::new(first, line, r, h, waist).map_err(&refused)?;
+                    Shape::Hyperboloid(shape)
                 }
             }
         }
@@ -263,7 +297,7 @@ fn object(record: &Record) -> Result<Object, Refusal> {
     };
     Ok(Object {
         shape,
-        material: material(record, [AMBIENT, DIFFUSE, SPECULAR]),
+        material: material(record, [AMBIENT, DIFFUSE, SPECULAR])?,
         pattern,
         kind: name,
         line: record.line,
@@ -272,7 +306,7 @@ fn object(record: &Record) -> Result<Object, Refusal> {
 
 /// The textured plane's texture and mode (spec §5.8), for a rectangle of `size`.
 fn texture(record: &Record, size: DVec2) -> Result<Pattern, Refusal> {
-    let mode_value = scalar(record.group(MODE));
+    let mode_value = scalar(record, MODE)?;
     let mode = match mode_value.trunc() {
         1.0 => TextureMode::Fit,
         2.0 => TextureMode::Tile,
@@ -281,8 +315,12 @@ fn texture(record: &Record, size: DVec2) -> Result<Pattern, Refusal> {
             return Err(Refusal::of(MODE, 0)(error));
         }
     };
-    let GroupData::FileName(path) = &record.group(TEXTURE).data else {
-        unreachable!("the texture slot holds a file name");
+    let Some(GroupData::FileName(path)) = record.group(TEXTURE).map(|g| &g.data) else {
+        let (record, label) = (record.layout.name, TEXTURE);
+        return Err(Refusal::of(TEXTURE, 0)(MeaningError::Internal {
+            record,
+            label,
+        }));
     };
     let texture = read_texture(path).map_err(|reason| {
         let error = MeaningError::Texture {
@@ -341,4 +379,29 @@ fn read_texture(path: &str) -> Result<Texture, String> {
         height,
         texels,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_group_the_layout_lacks_is_an_internal_error_not_a_panic() {
+        // A sphere record read without its groups: asking for its centre reports the
+        // builder's mistake with the record's place.
+        let record = Record {
+            layout: crate::scene_file::layout::of_code(13).unwrap(),
+            at: 7,
+            line: 3,
+            coefficients: Vec::new(),
+            groups: Vec::new(),
+        };
+        let refusal = vec3(&record, CENTRE).unwrap_err();
+        let expected = MeaningError::Internal {
+            record: "sphere",
+            label: CENTRE,
+        };
+        assert_eq!(refusal.error, expected);
+        assert_eq!(locate(&record, refusal).at, 7);
+    }
 }

@@ -71,12 +71,17 @@ pub(crate) struct Record {
 }
 
 impl Record {
-    /// The group with this label. Every label of the layout is present once read.
-    pub(crate) fn group(&self, label: &str) -> &Group {
-        self.groups
-            .iter()
-            .find(|g| g.label == label)
-            .unwrap_or_else(|| panic!("{} has no group {label}", self.layout.name))
+    /// The group with this label, if the record's layout has one.
+    pub(crate) fn group(&self, label: &str) -> Option<&Group> {
+        self.groups.iter().find(|g| g.label == label)
+    }
+}
+
+impl Group {
+    /// The group's first `N` numbers, or `None` if it holds fewer (a file name holds none).
+    pub(crate) fn values<const N: usize>(&self) -> Option<[f64; N]> {
+        let numbers = self.numbers();
+        (numbers.len() >= N).then(|| std::array::from_fn(|i| numbers[i].value))
     }
 }
 
@@ -356,10 +361,10 @@ mod tests {
         assert_eq!(sphere.layout.code, 13);
         assert_eq!(sphere.line, 4);
         assert_eq!(
-            values(sphere.group(layout::label::AMBIENT)),
+            values(sphere.group(layout::label::AMBIENT).unwrap()),
             [5.0, 5.0, 15.0]
         );
-        assert_eq!(values(sphere.group(layout::label::RADIUS)), [2.0]);
+        assert_eq!(values(sphere.group(layout::label::RADIUS).unwrap()), [2.0]);
     }
 
     #[test]

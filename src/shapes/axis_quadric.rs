@@ -97,6 +97,24 @@ impl AxisQuadric {
         }
     }
 
+    /// A quadric open at both ends between y = 0 and y = h (21, 22, 23), the `size`'s
+    /// height.
+    pub(crate) fn from_base(
+        frame: AxisFrame,
+        size: Size,
+        alpha_y: f64,
+        beta: f64,
+        gamma: f64,
+    ) -> Self {
+        AxisQuadric::new(
+            frame,
+            alpha_y,
+            beta,
+            gamma,
+            RootRule::within(0.0, size.height),
+        )
+    }
+
     /// The frame and size that every record 21-24 starts from: the frame from the first
     /// point and the centre line, and a radius and a height (the hyperboloid's
     /// half-height, named so by `height_name`) that must be positive.

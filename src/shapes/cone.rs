@@ -17,7 +17,7 @@
 //! Its normal ([`AxisQuadric::normal`]) is the local (2x, -2k y, 2z), turned back by
 //! `irot`; zero at the apex.
 
-use super::{AxisQuadric, Invalid, RootRule, Size};
+use super::{AxisQuadric, Invalid, Size};
 use glam::DVec3;
 
 /// A cone with its frame and scale k = (r/h)².
@@ -39,8 +39,7 @@ impl Cone {
             AxisQuadric::measure("cone", apex, centre_line, (radius, height), "height")?;
         let slope = size.radius / size.height;
         let k = slope * slope;
-        let rule = RootRule::within(0.0, size.height);
-        let equation = AxisQuadric::new(frame, -k, 0.0, 0.0, rule);
+        let equation = AxisQuadric::from_base(frame, size, -k, 0.0, 0.0);
         Ok(Cone { equation, size, k })
     }
 }
@@ -48,8 +47,7 @@ impl Cone {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::shapes::Ray;
-    use crate::shapes::kernel::Accurate;
+    use crate::shapes::testing::*;
 
     fn cone() -> Cone {
         // Apex at the origin, opening up +y, radius 1 at height 1: x² + z² = y², k = 1.

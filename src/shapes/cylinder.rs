@@ -16,7 +16,7 @@
 //! with 0 <= y <= h. Its normal ([`AxisQuadric::normal`]) is the local (x, 0, z), turned
 //! back by `irot`.
 
-use super::{AxisQuadric, Invalid, RootRule, Size};
+use super::{AxisQuadric, Invalid, Size};
 use glam::DVec3;
 
 /// A cylinder with its frame and r² precomputed.
@@ -33,8 +33,7 @@ impl Cylinder {
     pub fn new(base: DVec3, centre_line: DVec3, radius: f64, height: f64) -> Result<Self, Invalid> {
         let (frame, size) =
             AxisQuadric::measure("cylinder", base, centre_line, (radius, height), "height")?;
-        let rule = RootRule::within(0.0, size.height);
-        let equation = AxisQuadric::new(frame, 0.0, 0.0, -(size.radius * size.radius), rule);
+        let equation = AxisQuadric::from_base(frame, size, 0.0, 0.0, -(size.radius * size.radius));
         Ok(Cylinder { equation, size })
     }
 }
@@ -42,8 +41,7 @@ impl Cylinder {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::shapes::Ray;
-    use crate::shapes::kernel::Accurate;
+    use crate::shapes::testing::*;
 
     fn cylinder() -> Cylinder {
         // Note 003's example: base (4, 3, -4), axis +x, radius 2, height 5.

@@ -72,7 +72,7 @@ impl FinitePlane {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::shapes::kernel::Accurate;
+    use crate::shapes::testing::*;
 
     #[test]
     fn hits_inside_the_rectangle_and_on_its_edge_only() {

@@ -70,8 +70,7 @@ impl Hyperboloid {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::shapes::Ray;
-    use crate::shapes::kernel::Accurate;
+    use crate::shapes::testing::*;
 
     fn hyperboloid() -> Hyperboloid {
         // Ends of radius √2 at y = ±1, waist 1: k = (2 - 1)/1 = 1, x² + z² = y² + 1.

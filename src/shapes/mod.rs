@@ -350,6 +350,13 @@ impl Shape {
     }
 }
 
+/// What the shapes' tests use besides their own module: a ray and the shipped kernel.
+#[cfg(test)]
+pub(crate) mod testing {
+    pub use super::Ray;
+    pub use super::kernel::Accurate;
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -16,7 +16,7 @@
 //! positive root with 0 <= y <= h; along the axis a = 0 and the equation is linear. Its
 //! normal ([`AxisQuadric::normal`]) is the local (2x, -k, 2z), turned back by `irot`.
 
-use super::{AxisQuadric, Invalid, RootRule, Size};
+use super::{AxisQuadric, Invalid, Size};
 use glam::DVec3;
 
 /// A paraboloid with its frame and scale k = r²/h.
@@ -47,8 +47,7 @@ impl Paraboloid {
             "height",
         )?;
         let k = size.radius * size.radius / size.height;
-        let rule = RootRule::within(0.0, size.height);
-        let equation = AxisQuadric::new(frame, 0.0, -k, 0.0, rule);
+        let equation = AxisQuadric::from_base(frame, size, 0.0, -k, 0.0);
         Ok(Paraboloid { equation, size, k })
     }
 }
@@ -56,8 +55,7 @@ impl Paraboloid {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::shapes::Ray;
-    use crate::shapes::kernel::Accurate;
+    use crate::shapes::testing::*;
 
     fn bowl() -> Paraboloid {
         // Vertex at the origin opening up +y: k = 4 / 4 = 1, so x² + z² = y.

@@ -63,7 +63,7 @@ impl Plane {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::shapes::kernel::Accurate;
+    use crate::shapes::testing::*;
 
     #[test]
     fn ray_hits_the_floor_at_the_distance_of_the_formula() {

@@ -171,7 +171,7 @@ impl Quadric {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::shapes::kernel::Accurate;
+    use crate::shapes::testing::*;
 
     #[test]
     fn matrix_form_expands_to_the_scalar_equation_with_2i_z() {

@@ -51,8 +51,7 @@ impl Sphere {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::shapes::Ray;
-    use crate::shapes::kernel::Accurate;
+    use crate::shapes::testing::*;
 
     fn sphere() -> Sphere {
         Sphere::new(DVec3::new(0.0, 0.0, -5.0), 2.0, "sphere").unwrap()

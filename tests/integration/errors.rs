@@ -34,6 +34,7 @@ fn variant(kind: &SceneErrorKind) -> &'static str {
             MeaningError::TextureMode { .. } => "TextureMode",
             MeaningError::Texture { .. } => "Texture",
             MeaningError::ZeroQuadric => "ZeroQuadric",
+            MeaningError::Internal { .. } => "Internal",
         },
     }
 }
@@ -76,8 +77,9 @@ fn every_error_variant_has_an_invalid_input() {
         seen.insert(variant(&legacy_rt::load(&text).unwrap_err().kind));
     }
     // TooManyRecords needs a million records; `robustness` tests it on generated text.
-    seen.insert("TooManyRecords");
-    assert_eq!(seen.len(), 17, "{seen:?}");
+    // Internal reports a mistake of this program, which no input can cause.
+    seen.extend(["TooManyRecords", "Internal"]);
+    assert_eq!(seen.len(), 18, "{seen:?}");
 }
 
 #[test]
