@@ -107,7 +107,7 @@ impl Dump {
                 self.axis("vertex", &s.equation.frame);
                 self.row("radius", &[s.size.radius]);
                 self.row("height", &[s.size.height]);
-                self.row("k", &[s.k]);
+                self.row("k", &[s.k()]);
             }
             Shape::Cylinder(s) => {
                 self.axis("base centre", &s.equation.frame);
@@ -118,14 +118,14 @@ impl Dump {
                 self.axis("apex", &s.equation.frame);
                 self.row("radius", &[s.size.radius]);
                 self.row("height", &[s.size.height]);
-                self.row("k", &[s.k]);
+                self.row("k", &[s.k()]);
             }
             Shape::Hyperboloid(s) => {
                 self.axis("waist centre", &s.equation.frame);
                 self.row("end radius", &[s.size.radius]);
                 self.row("half-height", &[s.size.height]);
                 self.row("waist", &[s.waist]);
-                self.row("k", &[s.k]);
+                self.row("k", &[s.k()]);
             }
             Shape::Quadric(s) => {
                 self.row("A B C D E", &s.coefficients[..5]);

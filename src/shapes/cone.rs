@@ -27,8 +27,6 @@ pub struct Cone {
     pub equation: AxisQuadric,
     /// Radius at y = h, and height.
     pub size: Size,
-    /// k = (r/h)².
-    pub k: f64,
 }
 
 impl Cone {
@@ -40,7 +38,12 @@ impl Cone {
         let slope = size.radius / size.height;
         let k = slope * slope;
         let equation = AxisQuadric::from_base(frame, size, -k, 0.0, 0.0);
-        Ok(Cone { equation, size, k })
+        Ok(Cone { equation, size })
+    }
+
+    /// k = (r/h)², the -αy of its equation.
+    pub fn k(&self) -> f64 {
+        -self.equation.alpha.y
     }
 }
 

@@ -33,8 +33,6 @@ pub struct Hyperboloid {
     pub size: Size,
     /// Waist radius rc, >= 0.
     pub waist: f64,
-    /// k = (r² - rc²)/h² (negative when the waist is wider than the ends).
-    pub k: f64,
 }
 
 impl Hyperboloid {
@@ -62,8 +60,13 @@ impl Hyperboloid {
             equation,
             size,
             waist,
-            k,
         })
+    }
+
+    /// k = (r² - rc²)/h² (negative when the waist is wider than the ends), the -αy of
+    /// its equation.
+    pub fn k(&self) -> f64 {
+        -self.equation.alpha.y
     }
 }
 
@@ -101,6 +104,6 @@ mod tests {
         let error = Hyperboloid::new(DVec3::ZERO, DVec3::Y, 1.0, 1.0, -0.5).unwrap_err();
         assert_eq!(error.parameter, Parameter::Waist);
         let cone = Hyperboloid::new(DVec3::ZERO, DVec3::Y, 1.0, 1.0, 0.0).unwrap();
-        assert_eq!(cone.k, 1.0);
+        assert_eq!(cone.k(), 1.0);
     }
 }

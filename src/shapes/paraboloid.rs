@@ -26,8 +26,6 @@ pub struct Paraboloid {
     pub equation: AxisQuadric,
     /// Radius at y = h, and height.
     pub size: Size,
-    /// k = r²/h (note 003's `parab->scale`).
-    pub k: f64,
 }
 
 impl Paraboloid {
@@ -48,7 +46,12 @@ impl Paraboloid {
         )?;
         let k = size.radius * size.radius / size.height;
         let equation = AxisQuadric::from_base(frame, size, 0.0, -k, 0.0);
-        Ok(Paraboloid { equation, size, k })
+        Ok(Paraboloid { equation, size })
+    }
+
+    /// k = r²/h (note 003's `parab->scale`), the -β of its equation.
+    pub fn k(&self) -> f64 {
+        -self.equation.linear_y
     }
 }
 
@@ -64,7 +67,7 @@ mod tests {
 
     #[test]
     fn scale_is_r_squared_over_h() {
-        assert_eq!(bowl().k, 1.0);
+        assert_eq!(bowl().k(), 1.0);
     }
 
     #[test]

@@ -457,12 +457,12 @@ fn cone(g: &mut Gen, far: f64) -> Cone {
 fn cone_side(g: &mut Gen, far: f64) -> Side {
     let s = cone(g, far);
     let y = g.uniform(0.2, 0.9) * s.size.height;
-    Side::new(s.k.sqrt() * y, y, s.size.radius, Shape::Cone(s))
+    Side::new(s.k().sqrt() * y, y, s.size.radius, Shape::Cone(s))
 }
 
 fn cone_generator(g: &mut Gen) -> Case {
     let s = cone(g, 0.0);
-    let slope = s.k.sqrt();
+    let slope = s.k().sqrt();
     let around = |angle: f64| DVec3::new(angle.cos(), 0.0, angle.sin());
     let angle = g.uniform(0.0, std::f64::consts::TAU);
     // A point P of the wall on the side w, reached along the generator direction of
@@ -507,7 +507,7 @@ fn paraboloid(g: &mut Gen, far: f64) -> Paraboloid {
 fn paraboloid_side(g: &mut Gen, far: f64) -> Side {
     let s = paraboloid(g, far);
     let y = g.uniform(0.2, 0.9) * s.size.height;
-    Side::new((s.k * y).sqrt(), y, s.size.radius, Shape::Paraboloid(s))
+    Side::new((s.k() * y).sqrt(), y, s.size.radius, Shape::Paraboloid(s))
 }
 
 fn paraboloid_axis(g: &mut Gen) -> Case {
@@ -538,7 +538,7 @@ fn hyperboloid(g: &mut Gen, far: f64) -> Hyperboloid {
 fn hyperboloid_side(g: &mut Gen, far: f64) -> Side {
     let s = hyperboloid(g, far);
     let y = g.uniform(-0.9, 0.9) * s.size.height;
-    let radius = (s.k * y * y + s.waist * s.waist).sqrt();
+    let radius = (s.k() * y * y + s.waist * s.waist).sqrt();
     Side::new(radius, y, s.size.radius, Shape::Hyperboloid(s))
 }
 
