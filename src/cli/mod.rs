@@ -130,14 +130,20 @@ pub struct HowArgs {
 }
 
 impl HowArgs {
-    /// The library's options for a `width` x `height` image.
-    pub fn options(&self, width: u64, height: u64) -> Result<legacy_rt::Options, Failure> {
+    /// Fails on an option no render can take (before the scene is read).
+    pub fn check(&self) -> Result<(), Failure> {
         if self.max_dist.is_nan() || self.max_dist <= 0.0 {
             return Err(usage(format!(
                 "--max-dist must be greater than 0, found {}",
                 self.max_dist
             )));
         }
+        Ok(())
+    }
+
+    /// The library's options for a `width` x `height` image.
+    pub fn options(&self, width: u64, height: u64) -> Result<legacy_rt::Options, Failure> {
+        self.check()?;
         Ok(legacy_rt::Options {
             max_dist: self.max_dist,
             kernel: self.kernel,

@@ -18,8 +18,7 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
         ));
     }
     let output = output_file(args.output.as_deref().filter(|_| !args.dump))?;
-    // A bad option is found before the scene is read.
-    args.how.options(2, 2)?;
+    args.how.check()?;
     let text = read_scene()?;
     let scene = legacy_rt::load(&text).map_err(|error| Failure(error.to_string(), 1))?;
     if args.dump {

@@ -57,7 +57,7 @@ const MARK: [u8; 3] = [0, 255, 0];
 /// Traces the pixel of the scene on standard input.
 pub fn run(args: &TraceArgs) -> Result<(), Failure> {
     let output = output_file(args.output.as_deref())?;
-    args.how.options(2, 2)?;
+    args.how.check()?;
     let text = read_scene()?;
     let scene = legacy_rt::load(&text).map_err(|error| Failure(error.to_string(), 1))?;
     let (width, height) = size((args.width, args.height), &scene)?;

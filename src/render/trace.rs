@@ -245,8 +245,6 @@ pub enum LightStep {
 pub struct Trace {
     /// The pixel, (0, 0) at the lower left.
     pub pixel: (usize, usize),
-    /// The image size.
-    pub size: (usize, usize),
     /// The pixel's world point (spec §4.1).
     pub world: DVec3,
     /// The options rendered with.
@@ -284,7 +282,6 @@ fn trace_with<K: Kernel>(scene: &Scene, options: &Options, x: usize, y: usize) -
     };
     Trace {
         pixel: (x, y),
-        size: (options.width, options.height),
         world: camera.world(x, y),
         options: *options,
         events,
@@ -392,7 +389,7 @@ impl Trace {
     pub fn readable(&self, scene: &Scene) -> String {
         let mut out = String::new();
         let (x, y) = self.pixel;
-        let (w, h) = self.size;
+        let (w, h) = (self.options.width, self.options.height);
         let stage = match self.options.show {
             Some(show) => format!("--show {}", show.name()),
             None => format!("stage {}", self.options.stage.name()),

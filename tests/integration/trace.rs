@@ -178,15 +178,15 @@ fn the_diagnostic_images_follow_their_mappings() {
     assert_eq!(show(Show::Normals), [127, 127, 255]);
     // Distance 8 of MAX_DIST 32: grey 1 - 8/32 = 0.75.
     assert_eq!(show(Show::Depth), [191, 191, 191]);
-    // The floor is object 0: its colour, and another object's differs.
-    let floor = legacy_rt::render::object_colour(0)
-        .to_array()
-        .map(|c| (c * 255.0) as u8);
-    assert_eq!(show(Show::Objects), floor);
-    assert_ne!(
-        legacy_rt::render::object_colour(1),
-        legacy_rt::render::object_colour(0)
-    );
+    // The floor is object 0, hue 0: channels 0.55 + 0.45 cos(0, 2π/3, 4π/3) =
+    // (1, 0.325, 0.325), bytes 255, trunc(82.875), trunc(82.875).
+    assert_eq!(show(Show::Objects), [255, 82, 82]);
+    // The first objects of a file all get clearly different colours.
+    let colours: Vec<_> = (0..12).map(legacy_rt::render::object_colour).collect();
+    for (i, a) in colours.iter().enumerate() {
+        let apart = |b: &glam::DVec3| (*a - *b).abs().max_element() > 0.05;
+        assert!(colours[..i].iter().all(apart), "object {i}");
+    }
 }
 
 #[test]
