@@ -351,17 +351,10 @@ impl<'a, K: Kernel> Tracer<'a, K> {
         best
     }
 
-    /// An object but `skip` on `ray` closer than `dist`, which blocks the light (spec
-    /// §4.3): the first in file order, with its t (unknown with the hierarchy, which
-    /// only answers whether there is one).
+    /// Whether an object but `skip` lies on `ray` closer than `dist`, blocking the light
+    /// (spec §4.3). The first such object in file order, with its t, is recorded.
     #[inline]
-    fn blocked<R: Recorder>(
-        &self,
-        ray: &Ray,
-        skip: usize,
-        dist: f64,
-        rec: &mut R,
-    ) -> Option<(usize, f64)> {
+    fn blocked<R: Recorder>(&self, ray: &Ray, skip: usize, dist: f64, rec: &mut R) -> bool {
         let inverse = ray.dir.recip();
         let blocks = |index: usize, t: f64| {
             t > 0.0 && t < dist && self.boxes.admits(index, ray.base, inverse, t)
@@ -369,12 +362,11 @@ impl<'a, K: Kernel> Tracer<'a, K> {
         if let Some(bvh) = &self.bvh
             && !R::ENABLED
         {
-            let found = bvh.any(ray, dist, |index| {
+            return bvh.any(ray, dist, |index| {
                 index != skip
                     && (self.scene.objects[index].shape.hit_with::<K>(ray))
                         .is_some_and(|t| blocks(index, t))
             });
-            return found.then_some((skip, f64::NAN));
         }
         for (index, object) in self.scene.objects.iter().enumerate() {
             if index == skip {
@@ -384,10 +376,13 @@ impl<'a, K: Kernel> Tracer<'a, K> {
             if let Some(t) = self.test(index, &object.shape, ray, rec)
                 && blocks(index, t)
             {
-                return Some((index, t));
+                let blocker = Some((index, t));
+                rec.record(|| Event::Light(LightStep::Blocked { blocker }));
+                return true;
             }
         }
-        None
+        rec.record(|| Event::Light(LightStep::Blocked { blocker: None }));
+        false
     }
 
     /// ray_trace of spec §4.2, with the mirror recursion unrolled into a loop: the colour
@@ -510,9 +505,7 @@ impl<'a, K: Kernel> Tracer<'a, K> {
                 dir: u,
             };
             rec.record(|| Event::Light(LightStep::ShadowRay { ray: shadow }));
-            let blocker = self.blocked(&shadow, index, dist, rec);
-            rec.record(|| Event::Light(LightStep::Blocked { blocker }));
-            if blocker.is_some() {
+            if self.blocked(&shadow, index, dist, rec) {
                 return DVec3::ZERO;
             }
         }
