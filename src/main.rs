@@ -9,11 +9,14 @@ use std::process::ExitCode;
 fn main() -> ExitCode {
     let args = Args::parse();
     let result = match &args.command {
-        None => cli::render::run(&args.render),
-        Some(Command::Trace(trace)) => cli::trace::run(trace),
+        None => cli::render::run(&args.render).map(|()| true),
+        Some(Command::Trace(trace)) => cli::trace::run(trace).map(|()| true),
+        // 1 when the images differ, as ImageMagick's `compare`.
+        Some(Command::Compare(compare)) => cli::compare::run(compare),
     };
     match result {
-        Ok(()) => ExitCode::SUCCESS,
+        Ok(true) => ExitCode::SUCCESS,
+        Ok(false) => ExitCode::from(1),
         Err(Failure(message, code)) => {
             say(&message);
             ExitCode::from(code)

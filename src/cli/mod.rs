@@ -1,5 +1,6 @@
 //! The command line: its arguments, and the commands that run the library for them.
 
+pub mod compare;
 pub mod interrupt;
 pub mod io;
 pub mod render;
@@ -7,7 +8,7 @@ pub mod trace;
 
 use clap::{Parser, Subcommand};
 use legacy_rt::image_output::file::OutputFile;
-use legacy_rt::render::{DEFAULT_MAX_DIST, MAX_THREADS, Show, Stage};
+use legacy_rt::render::{DEFAULT_MAX_DIST, MAX_THREADS, Show, Stage, Variant};
 use legacy_rt::shapes::kernel::KernelChoice;
 use std::io::Write;
 use std::path::PathBuf;
@@ -27,8 +28,10 @@ Examples:
   legacy-rt --threads 0 < scene.txt > image.ppm  on every core, same bytes
   legacy-rt --stage diffuse < s.txt > d.ppm    the reference of the no-shadows assignment
   legacy-rt --show normals < s.txt > n.ppm     normals as colours (also: objects, depth)
+  legacy-rt --variant no-shadows < s.txt > v.ppm  as if with a student's mistake
   legacy-rt trace 320 240 < scene.txt          why pixel (320, 240) is what it is
   legacy-rt trace 320 240 --format course < scene.txt   as the course's DBG_ output
+  legacy-rt compare --diagnose scene.txt mine.ppm   why a student's image differs
 
 The scene is read from standard input; the image goes to standard output (or -o FILE);
 errors go to standard error with the line and column to fix, and then nothing at all is
@@ -68,6 +71,13 @@ pub enum Command {
     /// pixel's bytes
     #[command(after_help = trace::EXAMPLES)]
     Trace(trace::TraceArgs),
+
+    /// Compare a student's image with the reference rendered from the scene (or with a
+    /// reference image): the verdict as the exit status (0 match, 1 differ, 2 error),
+    /// where and on which objects they differ, the worst pixels with the trace command
+    /// for each, and with --diagnose the mistake that explains the difference
+    #[command(after_help = compare::EXAMPLES)]
+    Compare(compare::CompareArgs),
 }
 
 /// What rendering takes.
@@ -101,8 +111,8 @@ pub struct RenderArgs {
     pub how: HowArgs,
 }
 
-/// The options that rendering and `trace` share.
-#[derive(clap::Args, Debug, Clone, Copy)]
+/// The options that rendering, `trace` and `compare` share.
+#[derive(clap::Args, Debug, Clone)]
 pub struct HowArgs {
     /// Paths of rays longer than D (eye to hit, summed over mirror bounces) are black
     #[arg(long, value_name = "D", default_value_t = DEFAULT_MAX_DIST)]
@@ -127,6 +137,15 @@ pub struct HowArgs {
     /// (grey by the distance to the first hit; the mapping goes to standard error)
     #[arg(long, value_name = "IMAGE", value_parser = show, conflicts_with = "stage")]
     pub show: Option<Show>,
+
+    /// Render as if with a student's mistake, or another term's rule (spec §7.3):
+    /// pixel-centre, upside-down, round-bytes, scale-256, no-distance, segment-distance,
+    /// square-falloff, no-shadows, shadow-epsilon[=E], facing-normals, no-z-rule,
+    /// tile-parity, cone-scale, nearer-root, one-bounce, max-dist=D, textbook,
+    /// textbook-f32. Repeat it, or separate ids with commas, for several; docs/variants.md
+    /// shows each
+    #[arg(long, value_name = "ID", value_delimiter = ',', value_parser = variant)]
+    pub variant: Vec<Variant>,
 }
 
 impl HowArgs {
@@ -144,12 +163,15 @@ impl HowArgs {
     /// The library's options for a `width` x `height` image.
     pub fn options(&self, width: u64, height: u64) -> Result<legacy_rt::Options, Failure> {
         self.check()?;
-        Ok(legacy_rt::Options {
+        let options = legacy_rt::Options {
             max_dist: self.max_dist,
             kernel: self.kernel,
             stage: self.stage,
             show: self.show,
             ..legacy_rt::Options::new(width as usize, height as usize)
+        };
+        self.variant.iter().try_fold(options, |options, &variant| {
+            (options.with_variant(variant)).map_err(|conflict| usage(conflict.to_string()))
         })
     }
 }
@@ -194,6 +216,11 @@ fn stage(name: &str) -> Result<Stage, String> {
     let names: Vec<_> = Stage::ALL.iter().map(|s| s.name()).collect();
     let found = Stage::ALL.into_iter().find(|s| s.name() == name);
     found.ok_or_else(|| format!("expected one of: {}", names.join(", ")))
+}
+
+/// Parses a `--variant` id.
+fn variant(id: &str) -> Result<Variant, String> {
+    Variant::parse(id)
 }
 
 /// Parses a `--show` name.

@@ -77,7 +77,7 @@ pub fn run(args: &TraceArgs) -> Result<(), Failure> {
     };
     if let Some(output) = output {
         let mut image = render_with_progress(&scene, &options);
-        let at = (height as usize - 1 - y) * width as usize + x;
+        let at = options.row_of(y) * width as usize + x;
         image.pixels[at] = MARK;
         write_image(&image, output.format, Some(output))?;
     }

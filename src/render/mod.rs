@@ -10,17 +10,20 @@
 mod bvh;
 mod shading;
 pub mod trace;
+pub mod variant;
 
 pub use bvh::{Boxes, Bvh};
 pub use shading::PatternNote;
 pub(crate) use shading::{Screen, material_and_pattern};
 pub use trace::{Event, LightStep, Recorder, Show, Stage, Trace, trace};
+pub use variant::{Deviations, Variant};
 
 use crate::scene::{Light, Scene};
 use crate::shapes::kernel::{Accurate, Kernel, KernelChoice, StableRoots, Textbook, TextbookF32};
 use crate::shapes::{Ray, Shape, Surface, unit};
 use glam::{DVec2, DVec3};
 use std::marker::PhantomData;
+use variant::{AsSpecified, Deviating, Divisor, FirstRoot, Rules};
 
 /// The default MAX_DIST of spec §4.2.
 pub const DEFAULT_MAX_DIST: f64 = 32.0;
@@ -56,6 +59,9 @@ pub struct Options {
     pub stage: Stage,
     /// A diagnostic image instead of the stage's, or `None`.
     pub show: Option<Show>,
+    /// The rules of spec §4-§5 that this render replaces by a student's mistake (spec
+    /// §7.3; [`Options::with_variant`]); none by default.
+    pub deviations: Deviations,
 }
 
 impl Options {
@@ -70,6 +76,7 @@ impl Options {
             accelerate: true,
             stage: Stage::Full,
             show: None,
+            deviations: Deviations::default(),
         }
     }
 }
@@ -138,11 +145,15 @@ struct Camera {
 
 impl Camera {
     fn new(scene: &Scene, options: &Options) -> Camera {
+        let centres = options.deviations.pixel_centre;
         let axis = |count: usize, size: f64| -> Vec<f64> {
             let last = (count - 1) as f64;
-            (0..count)
-                .map(|i| i as f64 / last * size - size / 2.0)
-                .collect()
+            let at = |i: usize| match centres {
+                // The variant pixel-centre: (i + 0.5) / count (spec §7.3).
+                true => (i as f64 + 0.5) / count as f64,
+                false => i as f64 / last,
+            };
+            (0..count).map(|i| at(i) * size - size / 2.0).collect()
         };
         Camera {
             viewpoint: scene.viewpoint,
@@ -170,39 +181,86 @@ impl Camera {
     }
 }
 
-/// Renders the scene; `progress` is called with the number of rows done after each row.
-pub fn render(scene: &Scene, options: &Options, progress: impl FnMut(usize)) -> (Image, Stats) {
-    match options.kernel {
-        KernelChoice::Accurate => render_with::<Accurate>(scene, options, progress),
-        KernelChoice::Stable => render_with::<StableRoots>(scene, options, progress),
-        KernelChoice::Textbook => render_with::<Textbook>(scene, options, progress),
-        KernelChoice::TextbookF32 => render_with::<TextbookF32>(scene, options, progress),
+/// Something to run with the tracer's types chosen from the options: the kernel `K` and
+/// whether the rules deviate (`V`).
+trait WithTracer {
+    type Output;
+    fn run<K: Kernel, V: Rules>(self) -> Self::Output;
+}
+
+/// Runs `job` with the kernel of `options` and [`AsSpecified`] rules unless a variant
+/// changes the tracer's.
+fn dispatch<W: WithTracer>(options: &Options, job: W) -> W::Output {
+    let deviates = options.deviations.in_tracer();
+    match (options.kernel, deviates) {
+        (KernelChoice::Accurate, false) => job.run::<Accurate, AsSpecified>(),
+        (KernelChoice::Stable, false) => job.run::<StableRoots, AsSpecified>(),
+        (KernelChoice::Textbook, false) => job.run::<Textbook, AsSpecified>(),
+        (KernelChoice::TextbookF32, false) => job.run::<TextbookF32, AsSpecified>(),
+        (KernelChoice::Accurate, true) => job.run::<Accurate, Deviating>(),
+        (KernelChoice::Stable, true) => job.run::<StableRoots, Deviating>(),
+        (KernelChoice::Textbook, true) => job.run::<Textbook, Deviating>(),
+        (KernelChoice::TextbookF32, true) => job.run::<TextbookF32, Deviating>(),
     }
 }
 
-fn render_with<K: Kernel>(
+/// Renders the scene; `progress` is called with the number of rows done after each row.
+pub fn render(scene: &Scene, options: &Options, progress: impl FnMut(usize)) -> (Image, Stats) {
+    struct Job<'a, P>(&'a Scene, &'a Options, P);
+    impl<P: FnMut(usize)> WithTracer for Job<'_, P> {
+        type Output = (Image, Stats);
+        fn run<K: Kernel, V: Rules>(self) -> (Image, Stats) {
+            let scene = self.1.deviations.scene(self.0);
+            render_with::<K, V>(&scene, self.1, self.2)
+        }
+    }
+    dispatch(options, Job(scene, options, progress))
+}
+
+fn render_with<K: Kernel, V: Rules>(
     scene: &Scene,
     options: &Options,
     mut progress: impl FnMut(usize),
 ) -> (Image, Stats) {
     let camera = Camera::new(scene, options);
-    let tracer = Tracer::<K>::new(scene, options);
+    let tracer = Tracer::<K, V>::new(scene, options);
     let (width, height) = (options.width, options.height);
     let mut pixels = vec![[0u8; 3]; width * height];
     // One output row: pixel y = height - 1 - row (spec §4.1, top row first).
     let render_row = |row: usize, out: &mut [[u8; 3]]| {
         let mut stats = Stats::default();
-        let y = height - 1 - row;
+        let y = match V::DEVIATES && options.deviations.upside_down {
+            true => row,
+            false => height - 1 - row,
+        };
         for (x, pixel) in out.iter_mut().enumerate() {
             stats.camera += 1;
             let colour = match camera.ray(x, y) {
                 Some(ray) => tracer.pixel(ray, options.show, &mut stats, &mut ()),
                 None => DVec3::ZERO,
             };
-            *pixel = colour.to_array().map(to_byte);
+            *pixel = tracer.bytes(colour);
         }
         stats
     };
+    let stats = in_bands(options, &mut pixels, render_row, &mut progress);
+    let image = Image {
+        width,
+        height,
+        pixels,
+    };
+    (image, stats)
+}
+
+/// Runs `render_row(row, out)` for every output row of `pixels` on `options.threads`
+/// threads, telling `progress` the rows done, and sums the rows' statistics.
+fn in_bands<T: Send>(
+    options: &Options,
+    pixels: &mut [T],
+    render_row: impl Fn(usize, &mut [T]) -> Stats + Sync,
+    progress: &mut impl FnMut(usize),
+) -> Stats {
+    let (width, height) = (options.width, options.height);
     let mut stats = Stats::default();
     let pool = match options.threads {
         1 => None,
@@ -237,30 +295,123 @@ fn render_with<K: Kernel>(
             }
         }
     }
-    let image = Image {
-        width,
-        height,
-        pixels,
+    stats
+}
+
+/// `per_pixel` of every camera ray (`None` where the eye is the pixel's world point),
+/// in output order (rows top to bottom, spec §4.1), on `options.threads` threads.
+fn map_pixels<T: Send + Clone + Default>(
+    scene: &Scene,
+    options: &Options,
+    per_pixel: impl Fn(Option<Ray>, &mut Stats) -> T + Sync,
+) -> Vec<T> {
+    let camera = Camera::new(scene, options);
+    let mut pixels = vec![T::default(); options.width * options.height];
+    let render_row = |row: usize, out: &mut [T]| {
+        let mut stats = Stats::default();
+        // Output row r holds pixel row y = H - 1 - r, the same map both ways.
+        let y = options.row_of(row);
+        for (x, pixel) in out.iter_mut().enumerate() {
+            *pixel = per_pixel(camera.ray(x, y), &mut stats);
+        }
+        stats
     };
-    (image, stats)
+    in_bands(options, &mut pixels, render_row, &mut |_| {});
+    pixels
+}
+
+/// The object each camera ray hits first (spec §4.6), in output order; `None` for the
+/// background.
+pub fn first_hits(scene: &Scene, options: &Options) -> Vec<Option<usize>> {
+    struct Job<'a>(&'a Scene, &'a Options);
+    impl WithTracer for Job<'_> {
+        type Output = Vec<Option<usize>>;
+        fn run<K: Kernel, V: Rules>(self) -> Self::Output {
+            let Job(scene, options) = self;
+            let scene = options.deviations.scene(scene);
+            let tracer = Tracer::<K, V>::new(&scene, options);
+            let first = |ray: Option<Ray>, _: &mut Stats| {
+                let (index, _) = tracer.closest_hit(&ray?, None, &mut ())?;
+                Some(index)
+            };
+            map_pixels(&scene, options, first)
+        }
+    }
+    dispatch(options, Job(scene, options))
+}
+
+/// One pixel's colour for every MAX_DIST: `(start, colour)` for each segment of its path
+/// (the camera ray first, then each mirror bounce), where `start` is the path's length
+/// where the segment starts and `colour` the pixel's colour with that segment added.
+/// Under MAX_DIST D the pixel's colour is that of the last segment with start <= D
+/// (spec §4.2 step 1).
+pub type PathColours = Vec<(f64, DVec3)>;
+
+/// [`PathColours`] of every pixel, in output order, for paths up to `options.max_dist`:
+/// the image under every smaller MAX_DIST at the cost of one render.
+pub fn path_colours(scene: &Scene, options: &Options) -> Vec<PathColours> {
+    /// Keeps each segment's start and the colour after it.
+    struct Path(PathColours);
+    impl Recorder for Path {
+        const ENABLED: bool = true;
+        const EVERY_TEST: bool = false;
+        fn record(&mut self, event: impl FnOnce() -> Event) {
+            match event() {
+                Event::Segment { total_dist, .. } => {
+                    let colour = self.0.last().map_or(DVec3::ZERO, |&(_, c)| c);
+                    self.0.push((total_dist, colour));
+                }
+                Event::Divided { colour, .. } => {
+                    if let Some(last) = self.0.last_mut() {
+                        last.1 = colour;
+                    }
+                }
+                _ => {}
+            }
+        }
+    }
+    struct Job<'a>(&'a Scene, &'a Options);
+    impl WithTracer for Job<'_> {
+        type Output = Vec<PathColours>;
+        fn run<K: Kernel, V: Rules>(self) -> Self::Output {
+            let Job(scene, options) = self;
+            let scene = options.deviations.scene(scene);
+            let tracer = Tracer::<K, V>::new(&scene, options);
+            let path = |ray: Option<Ray>, stats: &mut Stats| {
+                let mut path = Path(Vec::new());
+                match ray {
+                    Some(ray) => {
+                        tracer.trace(ray, stats, &mut path);
+                    }
+                    None => path.0.push((0.0, DVec3::ZERO)),
+                }
+                path.0
+            };
+            map_pixels(&scene, options, path)
+        }
+    }
+    dispatch(options, Job(scene, options))
 }
 
 /// The colour seen along one ray from the eye (spec §4.2 with total_dist = 0 and no
 /// `last_hit`), before the conversion to bytes.
 pub fn ray_trace(scene: &Scene, options: &Options, ray: Ray) -> DVec3 {
-    fn with<K: Kernel>(scene: &Scene, options: &Options, ray: Ray) -> DVec3 {
-        Tracer::<K>::new(scene, options).pixel(ray, options.show, &mut Stats::default(), &mut ())
+    struct Job<'a>(&'a Scene, &'a Options, Ray);
+    impl WithTracer for Job<'_> {
+        type Output = DVec3;
+        fn run<K: Kernel, V: Rules>(self) -> DVec3 {
+            let Job(scene, options, ray) = self;
+            let scene = options.deviations.scene(scene);
+            let tracer = Tracer::<K, V>::new(&scene, options);
+            tracer.pixel(ray, options.show, &mut Stats::default(), &mut ())
+        }
     }
-    match options.kernel {
-        KernelChoice::Accurate => with::<Accurate>(scene, options, ray),
-        KernelChoice::Stable => with::<StableRoots>(scene, options, ray),
-        KernelChoice::Textbook => with::<Textbook>(scene, options, ray),
-        KernelChoice::TextbookF32 => with::<TextbookF32>(scene, options, ray),
-    }
+    dispatch(options, Job(scene, options, ray))
 }
 
-/// The scene and what every ray needs of the options; `K` computes the hits.
-struct Tracer<'a, K> {
+/// The scene and what every ray needs of the options; `K` computes the hits, and `V`
+/// says whether the rules deviate ([`variant`]).
+struct Tracer<'a, K, V> {
     scene: &'a Scene,
     /// The objects' boxes: a hit counts only inside its object's box (`Boxes::admits`).
     boxes: Boxes,
@@ -270,11 +421,13 @@ struct Tracer<'a, K> {
     screen: Screen,
     /// Which parts of spec §4 apply (spec §7.2).
     stage: Stage,
-    kernel: PhantomData<K>,
+    /// The variants' rules; read only where `V::DEVIATES`.
+    deviations: Deviations,
+    kernel: PhantomData<(K, V)>,
 }
 
-impl<'a, K: Kernel> Tracer<'a, K> {
-    fn new(scene: &'a Scene, options: &Options) -> Tracer<'a, K> {
+impl<'a, K: Kernel, V: Rules> Tracer<'a, K, V> {
+    fn new(scene: &'a Scene, options: &Options) -> Tracer<'a, K, V> {
         let screen = Screen {
             last_pixel: DVec2::new((options.width - 1) as f64, (options.height - 1) as f64),
             window: scene.window,
@@ -287,8 +440,53 @@ impl<'a, K: Kernel> Tracer<'a, K> {
             max_dist: options.max_dist,
             screen,
             stage: options.stage,
+            deviations: options.deviations,
             kernel: PhantomData,
         }
+    }
+
+    /// Whether the variant that `rule` picks out applies (never, at compile time, for
+    /// the rules as specified).
+    #[inline(always)]
+    fn deviates(&self, rule: impl FnOnce(&Deviations) -> bool) -> bool {
+        V::DEVIATES && rule(&self.deviations)
+    }
+
+    /// The pixel's bytes (spec §4.7, or round-bytes or scale-256).
+    #[inline(always)]
+    fn bytes(&self, colour: DVec3) -> [u8; 3] {
+        match V::DEVIATES {
+            true => colour.to_array().map(|c| self.deviations.bytes.byte(c)),
+            false => colour.to_array().map(to_byte),
+        }
+    }
+
+    /// What a ray leaving object `left` skips, and above which t a hit counts: the
+    /// object itself and t > 0 (spec §4.2, §4.3), or nothing and t > ε under
+    /// shadow-epsilon.
+    #[inline(always)]
+    fn leaving(&self, left: Option<usize>) -> (Option<usize>, f64) {
+        match (V::DEVIATES, self.deviations.epsilon, left) {
+            (true, Some(epsilon), Some(_)) => (None, epsilon),
+            _ => (left, 0.0),
+        }
+    }
+
+    /// Whether `shape` tries its smaller root only: a quadric 21-24 under nearer-root.
+    #[inline(always)]
+    fn nearer_root_only(&self, shape: &Shape) -> bool {
+        self.deviates(|d| d.nearer_root) && shape.axis_frame().is_some()
+    }
+
+    /// The shape's t along `ray` (the caller keeps t > 0).
+    #[inline(always)]
+    fn hit(&self, shape: &Shape, ray: &Ray) -> Option<f64> {
+        if self.nearer_root_only(shape) {
+            let mut first = FirstRoot::default();
+            shape.hit_noted::<K>(ray, &mut first);
+            return first.t();
+        }
+        shape.hit_with::<K>(ray)
     }
 
     /// Object `index`'s t along `ray`, told to `rec` with the shape's reasons when it
@@ -301,11 +499,14 @@ impl<'a, K: Kernel> Tracer<'a, K> {
         ray: &Ray,
         rec: &mut R,
     ) -> Option<f64> {
-        if !R::ENABLED {
-            return shape.hit_with::<K>(ray);
+        if !R::EVERY_TEST {
+            return self.hit(shape, ray);
         }
         let mut notes = Vec::new();
-        let t = shape.hit_noted::<K>(ray, &mut notes);
+        let mut t = shape.hit_noted::<K>(ray, &mut notes);
+        if self.nearer_root_only(shape) {
+            t = FirstRoot::of(&mut notes);
+        }
         rec.record(|| Event::Tested {
             object: index,
             t,
@@ -323,15 +524,16 @@ impl<'a, K: Kernel> Tracer<'a, K> {
         last_hit: Option<usize>,
         rec: &mut R,
     ) -> Option<(usize, f64)> {
+        let (last_hit, least) = self.leaving(last_hit);
         let inverse = ray.dir.recip();
         let counts =
-            |index: usize, t: f64| t > 0.0 && self.boxes.admits(index, ray.base, inverse, t);
+            |index: usize, t: f64| t > least && self.boxes.admits(index, ray.base, inverse, t);
         if let Some(bvh) = &self.bvh
-            && !R::ENABLED
+            && !R::EVERY_TEST
         {
             let test = |index: usize| {
                 let shape = &self.scene.objects[index].shape;
-                (Some(index) != last_hit).then(|| shape.hit_with::<K>(ray))?
+                (Some(index) != last_hit).then(|| self.hit(shape, ray))?
             };
             return bvh.closest(ray, test, counts);
         }
@@ -355,21 +557,23 @@ impl<'a, K: Kernel> Tracer<'a, K> {
     /// (spec §4.3). The first such object in file order, with its t, is recorded.
     #[inline]
     fn blocked<R: Recorder>(&self, ray: &Ray, skip: usize, dist: f64, rec: &mut R) -> bool {
+        let (skip, least) = self.leaving(Some(skip));
         let inverse = ray.dir.recip();
         let blocks = |index: usize, t: f64| {
-            t > 0.0 && t < dist && self.boxes.admits(index, ray.base, inverse, t)
+            t > least && t < dist && self.boxes.admits(index, ray.base, inverse, t)
         };
         if let Some(bvh) = &self.bvh
-            && !R::ENABLED
+            && !R::EVERY_TEST
         {
             return bvh.any(ray, dist, |index| {
-                index != skip
-                    && (self.scene.objects[index].shape.hit_with::<K>(ray))
+                Some(index) != skip
+                    && self
+                        .hit(&self.scene.objects[index].shape, ray)
                         .is_some_and(|t| blocks(index, t))
             });
         }
         for (index, object) in self.scene.objects.iter().enumerate() {
-            if index == skip {
+            if Some(index) == skip {
                 rec.record(|| Event::Skipped { object: index });
                 continue;
             }
@@ -393,7 +597,11 @@ impl<'a, K: Kernel> Tracer<'a, K> {
         let mut weight = DVec3::ONE;
         let mut total_dist = 0.0;
         let mut last_hit = None;
-        for depth in 0..=MAX_BOUNCES {
+        let bounces = match self.deviates(|d| d.one_bounce) {
+            true => 1,
+            false => MAX_BOUNCES,
+        };
+        for depth in 0..=bounces {
             if total_dist > self.max_dist {
                 rec.record(|| Event::CutOff { total_dist });
                 break;
@@ -410,7 +618,10 @@ impl<'a, K: Kernel> Tracer<'a, K> {
             };
             total_dist += t;
             let object = &self.scene.objects[index];
-            let surface = object.shape.surface(&ray, t);
+            let mut surface = object.shape.surface(&ray, t);
+            if self.deviates(|d| d.facing_normals) && surface.normal.dot(ray.dir) > 0.0 {
+                surface.normal = -surface.normal;
+            }
             let (material, pattern) = material_and_pattern(object, &surface, &self.screen);
             rec.record(|| Event::Surface {
                 object: index,
@@ -433,7 +644,11 @@ impl<'a, K: Kernel> Tracer<'a, K> {
                     });
                 }
             }
-            let seen = intensity / total_dist;
+            let seen = match self.deviates(|d| d.divisor != Divisor::Path) {
+                false => intensity / total_dist,
+                true if self.deviations.divisor == Divisor::Segment => intensity / t,
+                true => intensity,
+            };
             colour += weight * seen;
             rec.record(|| Event::Divided {
                 intensity,
@@ -442,7 +657,7 @@ impl<'a, K: Kernel> Tracer<'a, K> {
                 weight,
                 colour,
             });
-            if material.specular == DVec3::ZERO || !self.stage.reflects() {
+            if material.specular == DVec3::ZERO || !self.stage.reflects() || depth == bounces {
                 break;
             }
             weight *= material.specular;
@@ -498,7 +713,7 @@ impl<'a, K: Kernel> Tracer<'a, K> {
                 return DVec3::ZERO;
             }
         }
-        if self.stage.shadows() {
+        if self.stage.shadows() && !self.deviates(|d| d.no_shadows) {
             stats.shadow += 1;
             let shadow = Ray {
                 base: surface.point,
@@ -509,7 +724,11 @@ impl<'a, K: Kernel> Tracer<'a, K> {
                 return DVec3::ZERO;
             }
         }
-        diffuse * light.emissivity * (cos / dist)
+        let falloff = match self.deviates(|d| d.square_falloff) {
+            true => dist * dist,
+            false => dist,
+        };
+        diffuse * light.emissivity * (cos / falloff)
     }
 
     /// The diagnostic image of `show` at the first hit along `ray` (spec §7.2's companions:

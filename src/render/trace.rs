@@ -6,11 +6,12 @@
 //! false, so every recording call compiles away; `trace` passes a `Vec<Event>`, which
 //! collects what the same code computes. The formats below only print those events.
 
-use super::{Camera, Options, Stats, Tracer, to_byte};
+use super::variant::Rules;
+use super::{Camera, Options, Stats, Tracer, WithTracer, dispatch};
 use crate::render::shading::PatternNote;
 use crate::scene::dump::number;
 use crate::scene::{Material, Scene};
-use crate::shapes::kernel::{Accurate, Kernel, KernelChoice, StableRoots, Textbook, TextbookF32};
+use crate::shapes::kernel::Kernel;
 use crate::shapes::{HitNote, Ray, Surface, Verdict};
 use glam::DVec3;
 use std::fmt::Write;
@@ -90,9 +91,13 @@ impl Show {
 
 /// Where the renderer tells what it computes.
 pub trait Recorder {
-    /// Whether events are wanted. When false the renderer also takes its fastest paths
-    /// (the hierarchy, the kernel's compiled entry), which give the same numbers.
+    /// Whether events are wanted.
     const ENABLED: bool;
+
+    /// Whether every object's test is wanted, with the shape's reasons: the objects are
+    /// then tested one by one in file order, as the course program did. When false the
+    /// renderer takes the hierarchy and the kernel's compiled entry (the same numbers).
+    const EVERY_TEST: bool = Self::ENABLED;
 
     /// Takes one event; `event` is called only by a recorder that keeps it.
     fn record(&mut self, event: impl FnOnce() -> Event);
@@ -264,30 +269,30 @@ pub fn trace(scene: &Scene, options: &Options, x: usize, y: usize) -> Option<Tra
     if x >= options.width || y >= options.height {
         return None;
     }
-    Some(match options.kernel {
-        KernelChoice::Accurate => trace_with::<Accurate>(scene, options, x, y),
-        KernelChoice::Stable => trace_with::<StableRoots>(scene, options, x, y),
-        KernelChoice::Textbook => trace_with::<Textbook>(scene, options, x, y),
-        KernelChoice::TextbookF32 => trace_with::<TextbookF32>(scene, options, x, y),
-    })
-}
-
-fn trace_with<K: Kernel>(scene: &Scene, options: &Options, x: usize, y: usize) -> Trace {
-    let camera = Camera::new(scene, options);
-    let tracer = Tracer::<K>::new(scene, options);
-    let mut events = Vec::new();
-    let colour = match camera.ray(x, y) {
-        Some(ray) => tracer.pixel(ray, options.show, &mut Stats::default(), &mut events),
-        None => DVec3::ZERO,
-    };
-    Trace {
-        pixel: (x, y),
-        world: camera.world(x, y),
-        options: *options,
-        events,
-        colour,
-        bytes: colour.to_array().map(to_byte),
+    struct Job<'a>(&'a Scene, &'a Options, usize, usize);
+    impl WithTracer for Job<'_> {
+        type Output = Trace;
+        fn run<K: Kernel, V: Rules>(self) -> Trace {
+            let Job(scene, options, x, y) = self;
+            let scene = options.deviations.scene(scene);
+            let camera = Camera::new(&scene, options);
+            let tracer = Tracer::<K, V>::new(&scene, options);
+            let mut events = Vec::new();
+            let colour = match camera.ray(x, y) {
+                Some(ray) => tracer.pixel(ray, options.show, &mut Stats::default(), &mut events),
+                None => DVec3::ZERO,
+            };
+            Trace {
+                pixel: (x, y),
+                world: camera.world(x, y),
+                options: *options,
+                events,
+                colour,
+                bytes: tracer.bytes(colour),
+            }
+        }
     }
+    Some(dispatch(options, Job(scene, options, x, y)))
 }
 
 /// A vector with the trace's fixed decimals.
@@ -390,10 +395,15 @@ impl Trace {
         let mut out = String::new();
         let (x, y) = self.pixel;
         let (w, h) = (self.options.width, self.options.height);
-        let stage = match self.options.show {
+        let mut stage = match self.options.show {
             Some(show) => format!("--show {}", show.name()),
             None => format!("stage {}", self.options.stage.name()),
         };
+        let variants = self.options.deviations.variants();
+        if !variants.is_empty() {
+            let ids: Vec<_> = variants.iter().map(|v| v.id()).collect();
+            let _ = write!(stage, "; as if with --variant {}", ids.join(","));
+        }
         let _ = writeln!(
             out,
             "pixel ({x}, {y}) of {w}x{h}, (0, 0) at the lower left; {stage}"

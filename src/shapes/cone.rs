@@ -17,7 +17,7 @@
 //! Its normal ([`AxisQuadric::normal`]) is the local (2x, -2k y, 2z), turned back by
 //! `irot`; zero at the apex.
 
-use super::{AxisQuadric, Invalid, Size};
+use super::{AxisFrame, AxisQuadric, Invalid, Size};
 use glam::DVec3;
 
 /// A cone with its frame and scale k = (r/h)².
@@ -36,9 +36,14 @@ impl Cone {
         let (frame, size) =
             AxisQuadric::measure("cone", apex, centre_line, (radius, height), "height")?;
         let slope = size.radius / size.height;
-        let k = slope * slope;
+        Ok(Cone::with_k(frame, size, slope * slope))
+    }
+
+    /// The cone x² - k y² + z² = 0 for 0 <= y <= h with a given k: (r/h)² for the course's
+    /// cone, r²/h under the variant cone-scale (spec §7.3).
+    pub fn with_k(frame: AxisFrame, size: Size, k: f64) -> Self {
         let equation = AxisQuadric::from_base(frame, size, -k, 0.0, 0.0);
-        Ok(Cone { equation, size })
+        Cone { equation, size }
     }
 
     /// k = (r/h)², the -αy of its equation.

@@ -296,6 +296,28 @@ impl Shape {
         }
     }
 
+    /// The equation of a quadric 21-24, to change its root rule (the variant nearer-root).
+    pub fn bounded_axis_quadric_mut(&mut self) -> Option<&mut AxisQuadric> {
+        match self {
+            Shape::Paraboloid(s) => Some(&mut s.equation),
+            Shape::Cylinder(s) => Some(&mut s.equation),
+            Shape::Cone(s) => Some(&mut s.equation),
+            Shape::Hyperboloid(s) => Some(&mut s.equation),
+            _ => None,
+        }
+    }
+
+    /// The plane of a plane-based shape (14-17, 20), to drop its z rule (the variant
+    /// no-z-rule).
+    pub fn plane_mut(&mut self) -> Option<&mut Plane> {
+        match self {
+            Shape::Plane(s) => Some(s),
+            Shape::FinitePlane(s) => Some(&mut s.frame.plane),
+            Shape::TiledPlane(s) => Some(&mut s.plane),
+            _ => None,
+        }
+    }
+
     /// The local frame of a quadric 21-24 (spec §5.6), `None` for the other shapes.
     pub fn axis_frame(&self) -> Option<&AxisFrame> {
         match self {

@@ -21,13 +21,20 @@ pub struct Plane {
     pub normal: DVec3,
     /// A point of the plane.
     pub point: DVec3,
+    /// Spec §5.1's rule that a hit with z > 0 (behind the screen) is a miss: true but
+    /// under the variant no-z-rule (spec §7.3).
+    pub z_rule: bool,
 }
 
 impl Plane {
     /// Normalises the normal; a zero normal is an error.
     pub fn new(normal: DVec3, point: DVec3, record: &'static str) -> Result<Plane, Invalid> {
         let normal = unit_or_zero_error(normal, record, Parameter::Normal)?;
-        Ok(Plane { normal, point })
+        Ok(Plane {
+            normal,
+            point,
+            z_rule: true,
+        })
     }
 
     /// Where `ray` meets the plane (spec §5.1), with kernel `K` computing t: a miss when
@@ -50,7 +57,7 @@ impl Plane {
         // (A NaN t counts as behind.)
         let verdict = if t.is_nan() || t < 0.0 {
             Verdict::Behind
-        } else if z <= 0.0 || z <= K::screen_slack(ray, t) {
+        } else if z <= 0.0 || !self.z_rule || z <= K::screen_slack(ray, t) {
             Verdict::Counts
         } else {
             Verdict::BeyondScreen
