@@ -281,6 +281,17 @@ fn percent_of(share: f64) -> String {
     }
 }
 
+/// How many groups the text report lists; `--json` has them all.
+const GROUPS_SHOWN: usize = 8;
+
+/// "1 pixel differs", "1,204 pixels differ".
+fn pixels_differ(n: usize) -> String {
+    match n {
+        1 => "1 pixel differs".to_string(),
+        n => format!("{} pixels differ", thousands(n)),
+    }
+}
+
 /// An agreement (0 to 1) in percent, rounded down to two decimals so that only a full
 /// agreement shows as 100.00 %.
 fn agreement(share: f64) -> String {
@@ -340,15 +351,26 @@ fn text(
     if !report.groups.is_empty() {
         line(String::new());
         line("differing pixels by what the reference ray hits first:".to_string());
-        for group in &report.groups {
+        for group in report.groups.iter().take(GROUPS_SHOWN) {
             let name = match group.line {
                 Some(at) => format!("{} (line {at})", group.object),
                 None => group.object.clone(),
             };
             line(format!(
-                "  {name}: {} pixels differ, {} of the differences",
-                thousands(group.pixels),
+                "  {name}: {}, {} of the differences",
+                pixels_differ(group.pixels),
                 percent_of(group.share)
+            ));
+        }
+        let rest = &report.groups[report.groups.len().min(GROUPS_SHOWN)..];
+        if !rest.is_empty() {
+            let pixels = rest.iter().map(|g| g.pixels).sum();
+            let share = rest.iter().map(|g| g.share).sum();
+            line(format!(
+                "  {} more objects: {}, {} of the differences (--json lists them all)",
+                rest.len(),
+                pixels_differ(pixels),
+                percent_of(share)
             ));
         }
     }
@@ -390,10 +412,7 @@ fn text(
                 let ids = found.variants.join(",");
                 let about: Vec<String> = (found.variants.iter())
                     .filter_map(|id| Variant::parse(id).ok())
-                    .map(|v| {
-                        let about = v.about();
-                        format!("{} instead of {}", about.instead, about.rule)
-                    })
+                    .map(Variant::describe)
                     .collect();
                 line(format!(
                     "  --variant {ids}: {} ({})",

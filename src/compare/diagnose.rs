@@ -2,7 +2,8 @@
 //!
 //! Each variant is rendered at the image's size and scored by its agreement with the
 //! student's image (the share of pixels within the tolerance); the ones that agree better
-//! than the reference does are listed, best first, and the best two are tried together.
+//! than the reference does are listed, best first, and the best is tried together with
+//! each other variant.
 //! MAX_DIST is not guessed from a list: one render with long paths records each pixel's
 //! colour after each mirror bounce ([`render::path_colours`]), which gives the image
 //! under every MAX_DIST at once, and the best D is read off ([`estimate_max_dist`]).
@@ -39,8 +40,9 @@ struct Tried {
 }
 
 /// The variants that explain `student` better than `reference` (the image of `options`,
-/// at `options`' size), best first; the best two together first where they explain it
-/// better still. Empty when the images agree within `levels` everywhere.
+/// at `options`' size), best first; the best one together with another first where the
+/// pair explains it better still. Empty when the images agree within `levels`
+/// everywhere.
 pub fn diagnose(
     scene: &Scene,
     options: &Options,
@@ -87,29 +89,33 @@ pub fn diagnose(
     }
     // Best first; a stable sort keeps spec §7.3's order among equals.
     found.sort_by(|a, b| b.agreement.total_cmp(&a.agreement));
+    // The best one with each other variant: a second mistake often shows only once the
+    // first is undone (an image upside down hides everything else).
     if let Some(best) = found.first().filter(|best| best.agreement < 1.0) {
         let first = best.variants[0];
-        let partner = found[1..].iter().find(|other| {
-            let pair = [first, other.variants[0]];
-            pair.iter()
-                .try_fold(*options, |o, &v| o.with_variant(v).ok())
-                .is_some()
-        });
-        if let Some(partner) = partner {
-            let pair = vec![first, partner.variants[0]];
-            let range = best.max_dist_range.or(partner.max_dist_range);
-            if let Some(agreement) = score(&pair)
-                && agreement > best.agreement
-            {
-                found.insert(
-                    0,
-                    Tried {
-                        variants: pair,
-                        agreement,
-                        max_dist_range: range,
-                    },
-                );
-            }
+        let mut estimated = found.iter().map(|t| t.variants[0]);
+        let max_dist = estimated.rfind(|v| matches!(v, Variant::MaxDist(_)));
+        let partners = Variant::TRIED.into_iter().chain(max_dist);
+        let pairs = partners
+            .filter(|&partner| partner.id() != first.id())
+            .filter_map(|partner| Some((partner, score(&[first, partner])?)));
+        let top = pairs.max_by(|a, b| a.1.total_cmp(&b.1).then(std::cmp::Ordering::Greater));
+        if let Some((partner, agreement)) = top
+            && agreement > best.agreement
+        {
+            let range = match (first, partner) {
+                (Variant::MaxDist(_), _) => best.max_dist_range,
+                (_, Variant::MaxDist(_)) => found.iter().find_map(|t| t.max_dist_range),
+                _ => None,
+            };
+            found.insert(
+                0,
+                Tried {
+                    variants: vec![first, partner],
+                    agreement,
+                    max_dist_range: range,
+                },
+            );
         }
     }
     found

@@ -236,6 +236,21 @@ impl Variant {
     }
 }
 
+impl Variant {
+    /// "what it does instead of the rule it replaces", with the variant's value.
+    pub fn describe(self) -> String {
+        let about = self.about();
+        let instead = match self {
+            Variant::MaxDist(d) => format!("MAX_DIST {d}"),
+            Variant::ShadowEpsilon(e) => {
+                format!("rays leaving a surface test every object, counting hits with t > {e} only")
+            }
+            _ => about.instead.to_string(),
+        };
+        format!("{instead}, instead of {}", about.rule)
+    }
+}
+
 /// How a channel becomes a byte (spec §4.7 or a variant of it).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Bytes {

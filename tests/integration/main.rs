@@ -5,6 +5,8 @@
 mod accuracy;
 // The command line: sizes, formats, options, standard output holding only the image.
 mod cli;
+// `compare`: verdicts, reports, errors, and --diagnose naming every variant.
+mod compare;
 // Helpers: running the binary, listing scenes, snapshot settings.
 mod common;
 // The course's own scenes load; their dumps and images are snapshots.
@@ -29,6 +31,7 @@ mod reliability;
 mod robustness;
 // A scene scaled by 1e-3 and 1e3 keeps its image.
 mod scale;
+// The variants of spec §7.3: each rule's replacement, value by value.
+mod variants;
 // `trace` and the stages: trace bytes are image bytes; stage values from the formulas.
 mod trace;
-// scratch

@@ -2,21 +2,13 @@
 //! run the way that broke it, must now render or fail cleanly with the right status, and
 //! must never destroy what `-o` names.
 
-use super::common::{run, start};
+use super::common::{folder, run, start};
 use std::io::{Read, Write};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Child, Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
 const SCENE: &str = "8 6\n0 0 3\n10\n9 9 9\n0 4 2\n13\n1 1 1\n2 2 2\n0 0 0\n0 0 -4\n1.5\n";
-
-/// A fresh, empty folder for one test.
-fn folder(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("legacy-rt-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
 
 fn render_to(path: &Path) -> Output {
     run(

@@ -1,0 +1,205 @@
+//! The variants of spec §7.3: each replaces its one rule, checked against the value that
+//! rule's formula gives on a scene small enough to work out by hand.
+
+use glam::DVec3;
+use legacy_rt::render::{self, Options, Variant};
+use legacy_rt::shapes::{Ray, Shape};
+
+/// The debug scene of spec §6: a plane z = -5 facing the eye, ambient 5 5 0, no lights.
+const DEBUG_SCENE: &str = "8 6\n0 0 3\n14\n5 5 0\n0 0 0\n0 0 0\n0 0 -1\n0 0 -5\n";
+
+fn render_as(
+    text: &str,
+    (width, height): (usize, usize),
+    variants: &[Variant],
+) -> legacy_rt::Image {
+    let scene = legacy_rt::load(text).unwrap_or_else(|e| panic!("{e}"));
+    let options = variants.iter().fold(Options::new(width, height), |o, &v| {
+        o.with_variant(v).unwrap()
+    });
+    render::render(&scene, &options, |_| {}).0
+}
+
+/// The red byte of pixel (x, y), (0, 0) at the lower left, of an image in output order.
+fn red(image: &legacy_rt::Image, x: usize, y: usize) -> u8 {
+    image.pixels[(image.height - 1 - y) * image.width + x][0]
+}
+
+/// The distance from the eye (0, 0, 3) to the plane z = -5 through world point (x, y, 0).
+fn to_the_wall(x: f64, y: f64) -> f64 {
+    DVec3::new(x, y, -3.0).length() * 8.0 / 3.0
+}
+
+#[test]
+fn pixel_centre_samples_the_middle_of_each_pixel() {
+    let image = render_as(DEBUG_SCENE, (5, 3), &[Variant::PixelCentre]);
+    // Pixel (0, 0): (0.5 / 5 · 8 - 4, 0.5 / 3 · 6 - 3) = (-3.2, -2) instead of (-4, -3).
+    let expected = (5.0 / to_the_wall(-3.2, -2.0) * 255.0).floor() as u8;
+    assert_eq!(red(&image, 0, 0), expected);
+    assert_eq!(expected, 99); // 5 / 12.855 = 0.389
+    // The centre pixel (2, 1) is (0, 0) both ways: 5/8 → 159.
+    assert_eq!(red(&image, 2, 1), 159);
+}
+
+#[test]
+fn the_byte_rules_round_and_scale_by_256() {
+    let corner = 5.0 / to_the_wall(-4.0, -3.0); // 0.3215: 81.99 → 81 truncated (spec §6)
+    let round = render_as(DEBUG_SCENE, (5, 3), &[Variant::RoundBytes]);
+    assert_eq!(red(&round, 0, 0), (255.0 * corner + 0.5).floor() as u8);
+    assert_eq!(red(&round, 0, 0), 82);
+    let scaled = render_as(DEBUG_SCENE, (5, 3), &[Variant::Scale256]);
+    assert_eq!(red(&scaled, 0, 0), (256.0 * corner) as u8);
+    assert_eq!(red(&scaled, 2, 1), 160); // 256 · 0.625
+}
+
+#[test]
+fn no_distance_leaves_the_ambient_undivided() {
+    let image = render_as(DEBUG_SCENE, (5, 3), &[Variant::NoDistance]);
+    // Ambient 5 5 0, clamped to 1: every pixel 255 255 0.
+    assert!(image.pixels.iter().all(|&p| p == [255, 255, 0]));
+}
+
+#[test]
+fn upside_down_writes_the_bottom_row_first() {
+    let scene = "8 6\n0 0 3\n13\n9 9 9\n0 0 0\n0 0 0\n0 2 -4\n1.5\n"; // a sphere above centre
+    let normal = render_as(scene, (16, 12), &[]);
+    let flipped = render_as(scene, (16, 12), &[Variant::UpsideDown]);
+    let rows: Vec<_> = normal.pixels.chunks(16).rev().flatten().copied().collect();
+    assert_eq!(flipped.pixels, rows);
+    assert_ne!(flipped.pixels, normal.pixels);
+}
+
+/// A 45° mirror at the end of the centre ray sends it straight up to a ceiling 2 above:
+/// the camera segment is 8 long, the reflected one 2.
+const MIRROR_SCENE: &str = "8 6\n0 0 3\n\
+    14 mirror\n0 0 0\n0 0 0\n1 1 1\n0 1 1\n0 0 -5\n\
+    14 ceiling\n1 1 1\n0 0 0\n0 0 0\n0 -1 0\n0 2 0\n";
+
+#[test]
+fn segment_distance_divides_by_the_last_segment_only() {
+    // Spec §4.2: the ceiling's ambient 1 over the path's 8 + 2 = 10; the variant: over 2.
+    let reference = render_as(MIRROR_SCENE, (5, 3), &[]);
+    assert_eq!(red(&reference, 2, 1), (255.0 / 10.0) as u8);
+    let segment = render_as(MIRROR_SCENE, (5, 3), &[Variant::SegmentDistance]);
+    assert_eq!(red(&segment, 2, 1), (255.0 / 2.0) as u8);
+    let one = render_as(MIRROR_SCENE, (5, 3), &[Variant::OneBounce]);
+    assert_eq!(red(&one, 2, 1), red(&reference, 2, 1)); // one bounce is all it takes
+}
+
+/// A wall z = -5 with diffuse 1, its normal as given, a light of emissivity 16 at
+/// (0, 0, -1): the centre pixel's hit is 4 from the light, 8 from the eye.
+fn lit_wall(normal_z: i32) -> String {
+    format!("8 6\n0 0 3\n14\n0 0 0\n1 1 1\n0 0 0\n0 0 {normal_z}\n0 0 -5\n10\n16 16 16\n0 0 -1\n")
+}
+
+#[test]
+fn square_falloff_divides_by_the_squared_distance() {
+    // cos θ = 1, dist = 4: 16 / 4 / 8 = 0.5 as specified; 16 / 16 / 8 = 0.125 squared.
+    let reference = render_as(&lit_wall(1), (5, 3), &[]);
+    assert_eq!(red(&reference, 2, 1), 127);
+    let squared = render_as(&lit_wall(1), (5, 3), &[Variant::SquareFalloff]);
+    assert_eq!(red(&squared, 2, 1), (0.125 * 255.0) as u8);
+}
+
+#[test]
+fn facing_normals_light_the_back_of_a_surface() {
+    // The normal (0, 0, -1) faces away from the eye and the light: cos θ = -1, unlit.
+    let reference = render_as(&lit_wall(-1), (5, 3), &[]);
+    assert_eq!(red(&reference, 2, 1), 0);
+    let facing = render_as(&lit_wall(-1), (5, 3), &[Variant::FacingNormals]);
+    assert_eq!(red(&facing, 2, 1), 127);
+}
+
+#[test]
+fn no_shadows_lets_a_blocked_light_through() {
+    // The light at (0, 4, -1) is 4√2 from the hit (0, 0, -5), cos θ = 1/√2; a sphere on
+    // the way blocks it. Unblocked: 32 · (1/√2) / (4√2) / 8 = 0.5.
+    let scene = "8 6\n0 0 3\n14\n0 0 0\n1 1 1\n0 0 0\n0 0 1\n0 0 -5\n\
+        13\n0 0 0\n0 0 0\n0 0 0\n0 2 -3\n0.5\n10\n32 32 32\n0 4 -1\n";
+    assert_eq!(red(&render_as(scene, (5, 3), &[]), 2, 1), 0);
+    let unshadowed = render_as(scene, (5, 3), &[Variant::NoShadows]);
+    assert_eq!(red(&unshadowed, 2, 1), 127);
+}
+
+#[test]
+fn no_z_rule_keeps_a_plane_between_the_eye_and_the_screen() {
+    // Plane z = 1 with ambient 1: 2 from the eye along the centre ray, but z > 0.
+    let scene = "8 6\n0 0 3\n14\n1 1 1\n0 0 0\n0 0 0\n0 0 1\n0 0 1\n";
+    assert_eq!(red(&render_as(scene, (5, 3), &[]), 2, 1), 0);
+    assert_eq!(
+        red(&render_as(scene, (5, 3), &[Variant::NoZRule]), 2, 1),
+        127
+    );
+}
+
+#[test]
+fn tile_parity_swaps_which_tiles_are_the_foreground() {
+    // At the centre hit q = (0, 0): relx + rely = 20000, even: the background tile.
+    let scene = "8 6\n0 0 3\n16\n8 8 8\n0 0 0\n0 0 0\n0 0 1\n0 0 -5\n1 0 0\n1 1\n\
+        0 0 0\n0 0 0\n0 0 0\n";
+    assert_eq!(red(&render_as(scene, (5, 3), &[]), 2, 1), 0);
+    assert_eq!(
+        red(&render_as(scene, (5, 3), &[Variant::TileParity]), 2, 1),
+        255
+    );
+}
+
+#[test]
+fn cone_scale_takes_the_paraboloids_k() {
+    let scene = "8 6\n0 0 3\n23\n1 1 1\n0 0 0\n0 0 0\n0 -2 -6\n0 1 0\n2 4\n";
+    let scene = legacy_rt::load(scene).unwrap();
+    let options = Options::new(4, 3).with_variant(Variant::ConeScale).unwrap();
+    let k = |scene: &legacy_rt::Scene| match &scene.objects[0].shape {
+        Shape::Cone(cone) => cone.k(),
+        other => panic!("{other:?}"),
+    };
+    assert_eq!(k(&scene), (2.0f64 / 4.0).powi(2)); // (r/h)²
+    assert_eq!(k(&options.deviations.scene(&scene)), 2.0 * 2.0 / 4.0); // r²/h
+}
+
+#[test]
+fn nearer_root_misses_the_inside_of_an_open_cylinder() {
+    // A tube along z from -9 to -6, radius 1. The ray towards (0.3, 0, 0) enters its open
+    // end and meets the inner wall at (1, 0, -7), 10.05 from the eye; its smaller root
+    // (x = -1) lies behind the eye.
+    let scene = "8 6\n0 0 3\n22\n10 10 10\n0 0 0\n0 0 0\n0 0 -9\n0 0 1\n1 3\n";
+    let scene = legacy_rt::load(scene).unwrap();
+    let ray = Ray::new(
+        DVec3::new(0.0, 0.0, 3.0),
+        DVec3::new(0.3, 0.0, -3.0).normalize(),
+    );
+    let options = Options::new(8, 6);
+    let colour = render::ray_trace(&scene, &options, ray);
+    let distance = DVec3::new(1.0, 0.0, -10.0).length();
+    assert!((colour.x - 10.0 / distance).abs() < 1e-12, "{colour}");
+    let nearer = options.with_variant(Variant::NearerRoot).unwrap();
+    assert_eq!(render::ray_trace(&scene, &nearer, ray), DVec3::ZERO);
+}
+
+#[test]
+fn a_traced_pixel_has_the_bytes_of_the_variants_image() {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/examples/quadrics_gallery.txt"
+    ))
+    .unwrap();
+    let scene = legacy_rt::load(&text).unwrap();
+    for variant in Variant::all() {
+        let options = Options::new(32, 24).with_variant(variant).unwrap();
+        let image = render::render(&scene, &options, |_| {}).0;
+        for (x, y) in [(3, 4), (16, 12), (30, 2), (10, 20)] {
+            let trace = render::trace(&scene, &options, x, y).unwrap();
+            let row = options.row_of(y);
+            assert_eq!(
+                trace.bytes,
+                image.pixels[row * 32 + x],
+                "{} at ({x}, {y})",
+                variant.id()
+            );
+            assert!(
+                trace.readable(&scene).contains(&variant.id())
+                    || matches!(variant, Variant::MaxDist(_) | Variant::Kernel(_))
+            );
+        }
+    }
+}
