@@ -190,7 +190,9 @@ fn the_readme_s_trace_example_is_what_the_program_prints() {
         return;
     };
     let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
-    let start = readme.find("### When your image differs").unwrap();
+    let start = readme
+        .find("When no variant explains it, trace a pixel")
+        .unwrap();
     let section = &readme[start..];
     let section = &section[..section.find("\n### ").unwrap()];
     let scene = std::fs::read(dir.join("spec1.txt")).unwrap();
@@ -206,5 +208,43 @@ fn the_readme_s_trace_example_is_what_the_program_prints() {
                 "README: `{line}` is not in the trace:\n{trace}"
             );
         }
+    }
+}
+
+#[test]
+fn the_readme_s_compare_example_is_what_the_program_prints() {
+    let Some(dir) = super::common::course_scenes() else {
+        return;
+    };
+    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
+    let start = readme.find("### When your image differs").unwrap();
+    let end = readme
+        .find("When no variant explains it, trace a pixel")
+        .unwrap();
+    let blocks = fenced_blocks(&readme[start..end], "text");
+    // The student's image: d04 without shadow rays, 160x120, as the README's trace
+    // commands say.
+    let scene = std::fs::read(dir.join("d04.txt")).unwrap();
+    let folder = super::common::folder("readme-compare");
+    let mine = folder.join("mine.ppm");
+    let mine = mine.to_str().unwrap();
+    let output = super::common::run(
+        &["160", "120", "--variant", "no-shadows", "-o", mine],
+        &scene,
+    );
+    assert!(output.status.success());
+    let diff = folder.join("diff.png");
+    let args = ["compare", "--diagnose", "--diff", diff.to_str().unwrap()];
+    let d04 = "../shared/course-scenes/d04.txt";
+    let output = super::common::run(&[&args[..], &[d04, mine]].concat(), b"");
+    assert_eq!(output.status.code(), Some(1));
+    let report = String::from_utf8(output.stdout).unwrap();
+    let lines: Vec<&str> = report.lines().collect();
+    assert_eq!(blocks.len(), 2, "{blocks:?}");
+    for line in blocks[1].lines().filter(|line| line.trim() != "...") {
+        assert!(
+            lines.contains(&line),
+            "README: `{line}` is not in the report:\n{report}"
+        );
     }
 }
