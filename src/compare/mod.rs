@@ -10,7 +10,7 @@
 mod diagnose;
 pub mod read;
 
-pub use diagnose::{Diagnosis, diagnose, estimate_max_dist};
+pub use diagnose::{Diagnosis, PROBE_LIMIT, diagnose, estimate_max_dist, roundest};
 pub use read::{ReadError, read_image};
 
 use crate::render::{self, Image, Options};

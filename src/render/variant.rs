@@ -8,7 +8,7 @@
 //! at compile time, so the deviating code is not in the normal render at all. Variants of
 //! the scene's geometry (cone-scale, tile-parity, no-z-rule) rewrite a copy of the scene
 //! instead ([`Deviations::scene`]); nearer-root reads the shape's own account of its
-//! roots ([`FirstRoot`]); max-dist=D and the kernels are options the renderer already
+//! roots (`FirstRoot`); max-dist=D and the kernels are options the renderer already
 //! has.
 
 use crate::render::{DEFAULT_MAX_DIST, Options, to_byte};
