@@ -435,7 +435,9 @@ impl<'a, K: Kernel, V: Rules> Tracer<'a, K, V> {
         let boxes = Boxes::new(scene);
         Tracer {
             scene,
-            bvh: options.accelerate.then(|| Bvh::over(&boxes)).flatten(),
+            bvh: (options.accelerate)
+                .then(|| Bvh::for_rays(&boxes, options.width * options.height))
+                .flatten(),
             boxes,
             max_dist: options.max_dist,
             screen,

@@ -114,9 +114,7 @@ pub(crate) fn read(text: &str) -> Result<SceneText, Pending> {
     let mut reader = Reader {
         text,
         rest: text,
-        line_starts: std::iter::once(0)
-            .chain(text.match_indices('\n').map(|(i, _)| i + 1))
-            .collect(),
+        counted: std::cell::Cell::new((0, 1)),
         split: None,
     };
     // A group that ran on across a line break is legal (scanf reads that way), but it is
@@ -156,7 +154,9 @@ fn read_all(reader: &mut Reader<'_>) -> Result<SceneText, Pending> {
 struct Reader<'a> {
     text: &'a str,
     rest: &'a str,
-    line_starts: Vec<usize>,
+    /// An offset and the 1-based line it lies on: lines are counted from the last one
+    /// asked for, since the reader mostly asks for the next.
+    counted: std::cell::Cell<(usize, usize)>,
     /// A description of the first group whose numbers ran across a line break.
     split: Option<String>,
 }
@@ -167,7 +167,19 @@ impl<'a> Reader<'a> {
     }
 
     fn line_of(&self, offset: usize) -> usize {
-        self.line_starts.partition_point(|&start| start <= offset)
+        let (known, line) = self.counted.get();
+        let newlines = |from: usize, to: usize| {
+            self.text.as_bytes()[from..to]
+                .iter()
+                .filter(|&&b| b == b'\n')
+                .count()
+        };
+        let line = match offset >= known {
+            true => line + newlines(known, offset),
+            false => line - newlines(offset, known),
+        };
+        self.counted.set((offset, line));
+        line
     }
 
     /// Runs a parser that cannot fail (whitespace, comments) and moves past what it took.
@@ -306,10 +318,10 @@ impl<'a> Reader<'a> {
                                 format!("number {i} of the {count} on the {record}'s {label} line")
                             }
                         };
-                        let group_line = self.line_of(at);
                         // The first such group is the likely cause; later ones follow from it.
-                        let moved_on = self.line_of(self.offset()) != group_line;
-                        if i > 1 && moved_on && self.split.is_none() {
+                        let moved_on = || self.text[at..self.offset()].contains('\n');
+                        if i > 1 && self.split.is_none() && moved_on() {
+                            let group_line = self.line_of(at);
                             let n = i - 1;
                             self.split = Some(format!(
                                 "the {record}'s {label} line (line {group_line}) holds only {n} \

@@ -134,3 +134,22 @@ fn shapes_thinner_than_their_rounding_give_the_linear_scan_s_image() {
         assert!(bvh == linear, "{shape}");
     }
 }
+
+#[test]
+fn the_hierarchy_is_built_where_it_pays_for_its_rays() {
+    use legacy_rt::render::{Boxes, Bvh};
+    let spheres = |n: usize| -> String {
+        let one = |i: usize| format!("13\n1 1 1\n1 1 1\n0 0 0\n{} 0 -8\n0.4\n", i as f64 - 2.0);
+        format!("8 6\n0 0 3\n{}", (0..n).map(one).collect::<String>())
+    };
+    // One bounded object: scanned; two: a tree, for any real image.
+    let one = Boxes::new(&legacy_rt::load(&spheres(1)).unwrap());
+    assert!(Bvh::for_rays(&one, 640 * 480).is_none());
+    let two = Boxes::new(&legacy_rt::load(&spheres(2)).unwrap());
+    assert!(Bvh::for_rays(&two, 640 * 480).is_some());
+    // 1,000 objects: the build costs about 6 × log2(1000) = 60 tests per object, more than
+    // 4 rays scanning every object, less than a 16x12 image does.
+    let many = Boxes::new(&legacy_rt::load(&spheres(1000)).unwrap());
+    assert!(Bvh::for_rays(&many, 4).is_none());
+    assert!(Bvh::for_rays(&many, 16 * 12).is_some());
+}
