@@ -559,7 +559,11 @@ impl<'a, K: Kernel, V: Rules> Tracer<'a, K, V> {
     /// (spec §4.3). The first such object in file order, with its t, is recorded.
     #[inline]
     fn blocked<R: Recorder>(&self, ray: &Ray, skip: usize, dist: f64, rec: &mut R) -> bool {
-        let (skip, least) = self.leaving(Some(skip));
+        // No object has index usize::MAX: nothing is skipped under shadow-epsilon.
+        let (skip, least) = match self.leaving(Some(skip)) {
+            (Some(skip), least) => (skip, least),
+            (None, least) => (usize::MAX, least),
+        };
         let inverse = ray.dir.recip();
         let blocks = |index: usize, t: f64| {
             t > least && t < dist && self.boxes.admits(index, ray.base, inverse, t)
@@ -568,14 +572,14 @@ impl<'a, K: Kernel, V: Rules> Tracer<'a, K, V> {
             && !R::EVERY_TEST
         {
             return bvh.any(ray, dist, |index| {
-                Some(index) != skip
+                index != skip
                     && self
                         .hit(&self.scene.objects[index].shape, ray)
                         .is_some_and(|t| blocks(index, t))
             });
         }
         for (index, object) in self.scene.objects.iter().enumerate() {
-            if Some(index) == skip {
+            if index == skip {
                 rec.record(|| Event::Skipped { object: index });
                 continue;
             }
