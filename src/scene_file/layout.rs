@@ -100,6 +100,7 @@ impl Slot {
 }
 
 const fn n(label: &'static str, count: usize) -> Slot {
+    assert!(count <= 3, "a group holds at most 3 numbers (GROUP_MAX)");
     Slot::Numbers { label, count }
 }
 

@@ -4,7 +4,7 @@
 use nom::{
     IResult, Parser,
     branch::alt,
-    bytes::complete::{tag, tag_no_case, take_till, take_till1, take_while},
+    bytes::complete::{tag, tag_no_case, take_till1, take_while},
     character::complete::{char, digit0, digit1, hex_digit0, hex_digit1, one_of},
     combinator::{opt, recognize},
 };
@@ -20,8 +20,10 @@ fn is_line_space(c: char) -> bool {
 }
 
 /// Skips any whitespace, newlines included (what `scanf` does before a conversion).
+/// (Written with `str` methods: it runs between every two numbers of a scene.)
 pub fn blank(input: &str) -> IResult<&str, &str> {
-    take_while(is_space).parse(input)
+    let rest = input.trim_start_matches(is_space);
+    Ok((rest, &input[..input.len() - rest.len()]))
 }
 
 /// Skips whitespace up to, not past, the end of the line.
@@ -31,9 +33,10 @@ pub fn line_blank(input: &str) -> IResult<&str, &str> {
 
 /// The rest of the line and its newline: the comment after a group's numbers.
 pub fn comment(input: &str) -> IResult<&str, &str> {
-    let (input, text) = take_till(|c| c == '\n').parse(input)?;
-    let (input, _) = opt(char('\n')).parse(input)?;
-    Ok((input, text))
+    Ok(match input.split_once('\n') {
+        Some((text, rest)) => (rest, text),
+        None => ("", input),
+    })
 }
 
 /// One whitespace-free token (a file name, or the text quoted in an error).
