@@ -28,7 +28,9 @@ pub fn read_scene() -> Result<String, Failure> {
             "the scene is larger than {mib} MiB, the most this program reads"
         )));
     }
-    Ok(String::from_utf8_lossy(&text).into_owned())
+    // Valid UTF-8 (nearly every scene) becomes the String without a copy.
+    Ok(String::from_utf8(text)
+        .unwrap_or_else(|invalid| String::from_utf8_lossy(invalid.as_bytes()).into_owned()))
 }
 
 /// Writes `bytes` to standard output.

@@ -4,7 +4,7 @@
 use super::{Beam, Light, Material, Object, Pattern, Scene, Shader, Texture, TextureMode};
 use crate::error::{MeaningError, Pending};
 use crate::scene_file::layout::label::*;
-use crate::scene_file::{Group, GroupData, Record, SceneText};
+use crate::scene_file::{Group, GroupData, Record, Sink};
 use crate::shapes::{
     Cone, Cylinder, FinitePlane, Hyperboloid, Invalid, Paraboloid, Parameter, Plane, PlaneFrame,
     Quadric, Shape, Sphere, positive, unit,
@@ -59,18 +59,70 @@ impl Refusal {
     }
 }
 
-pub(super) fn build(text: SceneText) -> Result<Scene, Pending> {
-    let split = text.split.clone();
-    build_scene(text).map_err(|error| match split {
-        Some(split) => error.with_note(split),
-        None => error,
-    })
+/// Builds the scene as the reader reads it ([`Sink`]): each record becomes a light or an
+/// object at once, so the text's records are never all held. The first error in file
+/// order is kept, and the reading goes on, because a syntax error anywhere in the file
+/// is reported before it (as when the whole file was read first).
+pub(super) struct Builder {
+    scene: Scene,
+    error: Option<Pending>,
 }
 
-fn build_scene(text: SceneText) -> Result<Scene, Pending> {
+impl Builder {
+    pub(super) fn new() -> Builder {
+        let scene = Scene {
+            window: DVec2::ZERO,
+            viewpoint: DVec3::ZERO,
+            lights: Vec::new(),
+            objects: Vec::new(),
+        };
+        Builder { scene, error: None }
+    }
+
+    /// The scene, or its first error with the reader's note on a group that ran across a
+    /// line break (`split`), the likely cause of an error found after it.
+    pub(super) fn finish(self, split: Option<String>) -> Result<Scene, Pending> {
+        match (self.error, split) {
+            (None, _) => Ok(self.scene),
+            (Some(error), Some(split)) => Err(error.with_note(split)),
+            (Some(error), None) => Err(error),
+        }
+    }
+
+    fn keep(&mut self, result: Result<(), Pending>) {
+        if let Err(error) = result {
+            self.error = Some(error);
+        }
+    }
+}
+
+impl Sink for Builder {
+    fn header(&mut self, window: Group, viewpoint: Group) {
+        let result = header(&mut self.scene, &window, &viewpoint);
+        self.keep(result);
+    }
+
+    fn record(&mut self, record: Record) {
+        if self.error.is_some() {
+            return;
+        }
+        let located = |invalid| {
+            let (name, line) = (record.layout.name, record.line);
+            locate(&record, invalid).with_note(format!("the {name} record starts on line {line}"))
+        };
+        let result = match record.layout.code {
+            10 | 11 => light(&record).map(|light| self.scene.lights.push(light)),
+            _ => object(&record).map(|object| self.scene.objects.push(object)),
+        };
+        self.keep(result.map_err(located));
+    }
+}
+
+/// The world window and the viewpoint, into `scene`.
+fn header(scene: &mut Scene, window: &Group, viewpoint: &Group) -> Result<(), Pending> {
     // The reader reads the header's 2 and 3 numbers or fails; a shortfall here would be
     // this program's mistake, reported as one.
-    let header = |group: &Group| {
+    let internal = |group: &Group| {
         let (at, label) = (group.at, group.label);
         move || {
             Pending::new(
@@ -82,38 +134,17 @@ fn build_scene(text: SceneText) -> Result<Scene, Pending> {
             )
         }
     };
-    let window = DVec2::from_array(text.window.values().ok_or_else(header(&text.window))?);
-    let viewpoint = text
-        .viewpoint
-        .values()
-        .ok_or_else(header(&text.viewpoint))?;
+    let size = DVec2::from_array(window.values().ok_or_else(internal(window))?);
+    let eye = viewpoint.values().ok_or_else(internal(viewpoint))?;
     let header_error = |index: usize| {
-        let at = text
-            .window
-            .numbers()
-            .get(index)
-            .map_or(text.window.at, |n| n.at);
+        let at = window.numbers().get(index).map_or(window.at, |n| n.at);
         move |error| Pending::new(at, error)
     };
-    positive("world window", "width", window.x).map_err(header_error(0))?;
-    positive("world window", "height", window.y).map_err(header_error(1))?;
-    let mut scene = Scene {
-        window,
-        viewpoint: DVec3::from_array(viewpoint),
-        lights: Vec::new(),
-        objects: Vec::new(),
-    };
-    for record in &text.records {
-        let located = |invalid| {
-            let (name, line) = (record.layout.name, record.line);
-            locate(record, invalid).with_note(format!("the {name} record starts on line {line}"))
-        };
-        match record.layout.code {
-            10 | 11 => scene.lights.push(light(record).map_err(located)?),
-            _ => scene.objects.push(object(record).map_err(located)?),
-        }
-    }
-    Ok(scene)
+    positive("world window", "width", size.x).map_err(header_error(0))?;
+    positive("world window", "height", size.y).map_err(header_error(1))?;
+    scene.window = size;
+    scene.viewpoint = DVec3::from_array(eye);
+    Ok(())
 }
 
 /// The place of the number a constructor complained about.

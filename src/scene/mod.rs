@@ -1,7 +1,7 @@
 //! Meaning: records to a validated, typed scene (spec §3-§5).
 //!
 //! [`load`] runs the whole front end: [`crate::scene_file`] reads the text into records,
-//! then `build` turns each record into a light or an [`Object`], validating its numbers
+//! and as it reads them `build` turns each into a light or an [`Object`], validating its numbers
 //! and precomputing everything that depends only on the object (frames, `rotmat`, `irot`,
 //! `k`, unit normals, spotlight cosines, textures).
 
@@ -17,8 +17,9 @@ use std::sync::Arc;
 
 /// Reads and validates a scene; the error points at the line to fix.
 pub fn load(text: &str) -> Result<Scene, SceneError> {
-    crate::scene_file::read(text)
-        .and_then(build::build)
+    let mut builder = build::Builder::new();
+    crate::scene_file::read_into(text, &mut builder)
+        .and_then(|split| builder.finish(split))
         .map_err(|pending| pending.locate(text))
 }
 
@@ -159,6 +160,18 @@ impl Scene {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_syntax_error_anywhere_comes_before_an_earlier_records_meaning_error() {
+        // Record 1 has radius 0 (a meaning error); record 2 has a word for a number. The
+        // builder works while the reader reads, but the syntax error is still reported.
+        let bad_radius = "13\n1 1 1\n0 0 0\n0 0 0\n0 0 -3\n0\n";
+        let bad_word = "13\n1 1 1\n0 0 zero\n0 0 0\n0 0 -3\n1\n";
+        let error = load(&format!("8 6\n0 0 3\n{bad_radius}{bad_word}")).unwrap_err();
+        assert_eq!(error.at.line, 11, "{error}");
+        let error = load(&format!("8 6\n0 0 3\n{bad_radius}")).unwrap_err();
+        assert_eq!(error.at.line, 8, "{error}");
+    }
 
     #[test]
     fn a_missing_number_is_named_even_when_the_error_shows_up_later() {

@@ -113,6 +113,7 @@ impl Group {
 }
 
 /// A whole scene file as records: the header groups and the records in file order.
+#[cfg(test)]
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct SceneText {
     /// The world window width and height.
@@ -126,15 +127,56 @@ pub(crate) struct SceneText {
     pub(crate) split: Option<String>,
 }
 
-/// The name the header has in messages.
-const HEADER: &Layout = &Layout {
+/// The name the header has in messages. A `static`, so that it has one address:
+/// `groups` tells the header by it (a `const` may be a different copy at each use).
+static HEADER: &Layout = &Layout {
     code: 0,
     name: "header",
     slots: &layout::HEADER,
 };
 
-/// Reads the scene text into records.
+/// Where the reader hands what it reads, as it reads it: a scene of a million records is
+/// built record by record instead of being held as text records first.
+pub(crate) trait Sink {
+    /// The header's two groups: world window and viewpoint.
+    fn header(&mut self, window: Group, viewpoint: Group);
+    /// The next record.
+    fn record(&mut self, record: Record);
+}
+
+/// Collects everything: [`read`].
+#[cfg(test)]
+struct Collect(Option<(Group, Group)>, Vec<Record>);
+
+#[cfg(test)]
+impl Sink for Collect {
+    fn header(&mut self, window: Group, viewpoint: Group) {
+        self.0 = Some((window, viewpoint));
+    }
+
+    fn record(&mut self, record: Record) {
+        self.1.push(record);
+    }
+}
+
+/// Reads the scene text into records, all at once (the tests' view of the reader).
+#[cfg(test)]
 pub(crate) fn read(text: &str) -> Result<SceneText, Pending> {
+    let mut collect = Collect(None, Vec::new());
+    let split = read_into(text, &mut collect)?;
+    let (window, viewpoint) = collect.0.expect("a header precedes every record");
+    Ok(SceneText {
+        window,
+        viewpoint,
+        records: collect.1,
+        split,
+    })
+}
+
+/// Reads the scene text into `sink`, to the end or to the first syntax error. On success,
+/// the note on the first group whose numbers ran across a line break, if any (the likely
+/// cause of any error found in the numbers later).
+pub(crate) fn read_into(text: &str, sink: &mut impl Sink) -> Result<Option<String>, Pending> {
     if text.starts_with('\u{feff}') {
         return Err(Pending::new(0, SyntaxError::ByteOrderMark));
     }
@@ -146,36 +188,37 @@ pub(crate) fn read(text: &str) -> Result<SceneText, Pending> {
     };
     // A group that ran on across a line break is legal (scanf reads that way), but it is
     // also what a missing number looks like, and the error then shows up records later.
-    read_all(&mut reader).map_err(|error| match &reader.split {
+    read_all(&mut reader, sink).map_err(|error| match &reader.split {
         Some(split) => error.with_note(split.clone()),
         None => error,
     })
 }
 
-fn read_all(reader: &mut Reader<'_>) -> Result<SceneText, Pending> {
-    let mut header = reader.groups(HEADER, 0)?.into_iter();
-    let (window, viewpoint) = (header.next().unwrap(), header.next().unwrap());
-    let mut records = Vec::new();
+fn read_all(reader: &mut Reader<'_>, sink: &mut impl Sink) -> Result<Option<String>, Pending> {
+    let header = reader.groups(HEADER, 0)?;
+    let [window, viewpoint]: [Group; 2] = header.try_into().map_err(|_| {
+        // The header's layout has two groups, each read or an error.
+        let (record, label) = ("header", layout::label::WINDOW);
+        Pending::new(0, crate::error::MeaningError::Internal { record, label })
+    })?;
+    sink.header(window, viewpoint);
+    let mut records = 0;
     loop {
         reader.skip(lexeme::blank);
         if reader.rest.is_empty() {
             break;
         }
-        if records.len() == MAX_RECORDS {
+        if records == MAX_RECORDS {
             let limit = MAX_RECORDS;
             return Err(Pending::new(
                 reader.offset(),
                 SyntaxError::TooManyRecords { limit },
             ));
         }
-        records.push(reader.record()?);
+        sink.record(reader.record()?);
+        records += 1;
     }
-    Ok(SceneText {
-        window,
-        viewpoint,
-        records,
-        split: reader.split.take(),
-    })
+    Ok(reader.split.take())
 }
 
 struct Reader<'a> {
