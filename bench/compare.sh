@@ -1,28 +1,30 @@
 #!/usr/bin/env bash
-# legacy-rt against POV-Ray 3.7, side by side (issue 6). For each scene of bench/ it
-# renders the legacy file with legacy-rt and the .pov twin with POV-Ray, both at
-# 1600x1200 on one thread, one ray per pixel, shadows on, no anti-aliasing, and prints
-# the median times (hyperfine, several runs each) and their ratio.
+# legacy-rt against POV-Ray 3.7 (issue 6) and Tachyon (issue 16), side by side. For each
+# scene it renders the legacy file with legacy-rt and its twin with the other program,
+# both at 1600x1200 on one thread, one ray per pixel, shadows on, no anti-aliasing, the
+# two alternated run by run, and prints the median CPU times and their ratio
+# (bench/alternate.py).
 #
-#   bench/compare.sh            (installs povray and hyperfine with apt when missing)
+#   bench/compare.sh            (installs povray and tachyon with apt when missing)
 #   RUNS=10 bench/compare.sh    more runs per command
 #
-# The scenes: the course scene spec1, examples/quadrics_gallery.txt, and the generated
-# 1 000-object scene of tests/support/generated.rs. Each .pov file lists the
-# differences that remain; the lighting models differ, so this compares work, not
-# colours.
+# The scenes: against POV-Ray, the course scene spec1, examples/quadrics_gallery.txt and
+# the generated 1 000-object scene of tests/support/generated.rs (each .pov file lists
+# the differences that remain); against Tachyon, the two twins that
+# bench/tachyon_twins.py writes (7 and 113 objects). The lighting models differ, so this
+# compares work, not colours.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 RUNS="${RUNS:-5}"
 WIDTH=1600
 HEIGHT=1200
 
-if ! command -v povray >/dev/null || ! command -v hyperfine >/dev/null; then
-    echo "installing povray and hyperfine with apt-get" >&2
+if ! command -v povray >/dev/null || ! command -v tachyon >/dev/null; then
+    echo "installing povray and tachyon with apt-get" >&2
     SUDO=""
     if [ "$(id -u)" != 0 ]; then SUDO="sudo"; fi
     $SUDO apt-get update -q >&2
-    DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q povray hyperfine >&2
+    DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q povray tachyon >&2
 fi
 
 cargo build --release --locked --bin legacy-rt >&2
@@ -36,20 +38,24 @@ if [ ! -f "$course" ]; then
     exit 1
 fi
 
-printf '%-10s %12s %12s %8s\n' scene legacy-rt povray ratio
+echo "CPU seconds, medians of $RUNS runs alternated run by run, one thread, ${WIDTH}x${HEIGHT}"
 for pair in "spec1:$course" "gallery:examples/quadrics_gallery.txt" "many:$out/many.txt"; do
     name="${pair%%:*}"
     legacy="${pair#*:}"
+    echo "$name (legacy-rt vs POV-Ray 3.7)"
     # POV-Ray writes its image into the current folder (its default file-access policy
     # allows that); +WT1 one thread, -A no anti-aliasing, -D no display, -GA quiet.
-    hyperfine --style none --warmup 1 --runs "$RUNS" --export-json "$out/$name.json" \
-        -n legacy-rt "target/release/legacy-rt $WIDTH $HEIGHT < $legacy > $out/$name.ppm" \
-        -n povray "cd $out && povray +I../../bench/$name.pov +O$name-pov.png +W$WIDTH +H$HEIGHT +WT1 -A -D -GA" \
-        >&2
-    python3 - "$out/$name.json" "$name" <<'PY'
-import json, sys
-results = {r["command"]: r["median"] for r in json.load(open(sys.argv[1]))["results"]}
-legacy, povray = results["legacy-rt"], results["povray"]
-print(f"{sys.argv[2]:<10} {legacy:11.3f}s {povray:11.3f}s {povray / legacy:7.2f}x")
-PY
+    python3 bench/alternate.py --runs "$RUNS" \
+        "legacy-rt=target/release/legacy-rt $WIDTH $HEIGHT < $legacy > $out/$name.ppm" \
+        "povray=cd $out && povray +I../../bench/$name.pov +O$name-pov.png +W$WIDTH +H$HEIGHT +WT1 -A -D -GA"
+done
+
+# Tachyon: the twins of bench/tachyon_twins.py, shadows on (-fullshade), no
+# anti-aliasing, one thread.
+python3 bench/tachyon_twins.py "$out"
+for name in small many; do
+    echo "$name (legacy-rt vs Tachyon, bench/tachyon_twins.py)"
+    python3 bench/alternate.py --runs "$RUNS" \
+        "legacy-rt=target/release/legacy-rt $WIDTH $HEIGHT < $out/$name.txt > $out/$name-twin.ppm" \
+        "tachyon=tachyon $out/$name.dat -res $WIDTH $HEIGHT -numthreads 1 -aasamples 0 -fullshade -format PPM -o $out/$name-tachyon.ppm"
 done

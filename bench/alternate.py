@@ -1,0 +1,35 @@
+#!/usr/bin/env python3
+"""Runs shell commands in turn, run by run (A B C A B C ...), so that the load of a shared
+machine falls on all of them alike, and prints each one's median CPU time (user + system
+of its processes) and its ratio to the first.
+
+    bench/alternate.py --runs 5 NAME=COMMAND NAME=COMMAND ...
+"""
+import resource, statistics, subprocess, sys
+
+def cpu_seconds():
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
+
+def main():
+    args = sys.argv[1:]
+    runs = 5
+    if args[:1] == ["--runs"]:
+        runs, args = int(args[1]), args[2:]
+    if not args or any("=" not in a for a in args):
+        sys.exit(__doc__)
+    commands = [a.split("=", 1) for a in args]
+    times = {name: [] for name, _ in commands}
+    for _ in range(runs):
+        for name, command in commands:
+            before = cpu_seconds()
+            subprocess.run(command, shell=True, check=True,
+                           stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+            times[name].append(cpu_seconds() - before)
+    first = statistics.median(times[commands[0][0]])
+    for name, _ in commands:
+        median = statistics.median(times[name])
+        print(f"  {name:<10} {median:8.3f} s CPU  {median / first:6.2f}x the first")
+
+if __name__ == "__main__":
+    main()

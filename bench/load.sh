@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# Loading at scale (issue 16): a generated scene of one light and 999,999 spheres
+# (1,000,000 records, about 52 MB, the most a scene may hold), rendered at 2x2 so that
+# the time is the loading's. Prints the median CPU time (user + system) and the largest
+# peak memory of RUNS runs.
+#
+#   bench/load.sh            RUNS=5 by default
+#   bench/load.sh OTHER-BINARY    the same for another build of legacy-rt
+set -euo pipefail
+cd "$(dirname "$0")/.."
+RUNS="${RUNS:-5}"
+binary="${1:-target/release/legacy-rt}"
+if [ -z "${1:-}" ]; then cargo build --release --locked --bin legacy-rt >&2; fi
+out="target/bench"
+mkdir -p "$out"
+scene="$out/million.txt"
+if [ ! -f "$scene" ]; then
+    python3 - "$scene" <<'PY'
+import random, sys
+random.seed(1)
+with open(sys.argv[1], "w") as f:
+    f.write("8 6   world\n0 0 3   viewpoint\n10\n9 9 9\n0 4 2\n")
+    for _ in range(999_999):
+        x, y, z = random.uniform(-40, 40), random.uniform(-30, 30), random.uniform(-200, -10)
+        f.write(f"13\n1 0.5 0.5\n2 2 2\n0 0 0\n{x:.3f} {y:.3f} {z:.3f}\n0.2\n")
+PY
+fi
+python3 - "$binary" "$scene" "$RUNS" <<'PY'
+import os, resource, statistics, subprocess, sys
+binary, scene, runs = sys.argv[1], sys.argv[2], int(sys.argv[3])
+times, peaks = [], []
+for _ in range(runs):
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    with open(scene, "rb") as stdin:
+        subprocess.run([binary, "2", "2"], stdin=stdin, stdout=subprocess.DEVNULL, check=True)
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    times.append(after.ru_utime - before.ru_utime + after.ru_stime - before.ru_stime)
+    peaks.append(after.ru_maxrss)
+size = os.path.getsize(scene) / 1e6
+print(f"{scene}: {size:.1f} MB, 1,000,000 records")
+print(f"CPU time median of {runs}: {statistics.median(times):.2f} s "
+      f"({1e6 / statistics.median(times) / 1e6:.2f} M records/s); "
+      f"peak memory {max(peaks) / 1024:.0f} MB")
+PY
