@@ -269,7 +269,7 @@ impl Shape {
     #[inline]
     pub fn hit_with<K: Kernel>(&self, ray: &Ray) -> Option<f64> {
         match self {
-            Shape::Sphere(s) => K::axis_quadric(&s.equation, ray),
+            Shape::Sphere(s) => K::sphere(s, ray),
             Shape::Plane(s) => K::plane(s, ray),
             Shape::FinitePlane(s) => s.hit::<K>(ray),
             Shape::TiledPlane(s) => K::plane(&s.plane, ray),

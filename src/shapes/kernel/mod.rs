@@ -29,7 +29,7 @@ pub use textbook_f32::{Single, TextbookF32};
 
 pub(crate) use quadratic::{solve_quadratic, solve_quadratic_with_slope};
 
-use super::{AxisFrame, AxisQuadric, Plane, Quadric, Ray};
+use super::{AxisFrame, AxisQuadric, Plane, Quadric, Ray, Sphere};
 
 /// The arithmetic of one way to compute hit distances. The algorithms themselves, in the
 /// order of the notes, are written once, in [`AxisQuadric::hit`], [`Plane::hit`] and
@@ -56,6 +56,13 @@ pub trait Kernel: Copy + Default + Send + Sync + 'static {
     #[inline(always)]
     fn axis_quadric(quadric: &AxisQuadric, ray: &Ray) -> Option<f64> {
         quadric.hit::<Self>(ray)
+    }
+
+    /// The hit of a sphere: [`AxisQuadric::hit`] on its equation. A kernel may first rule
+    /// out, more cheaply, rays that certainly miss it.
+    #[inline(always)]
+    fn sphere(sphere: &Sphere, ray: &Ray) -> Option<f64> {
+        Self::axis_quadric(&sphere.equation, ray)
     }
 
     /// The hit of a general `QUADRIC`: [`Quadric::hit`] in this kernel's arithmetic.
