@@ -4,7 +4,7 @@
 //! student's likely mistake.
 
 use super::render::write_image;
-use super::{Failure, HowArgs, output_file, threads};
+use super::{Failure, HowArgs, output_file, size, threads};
 use legacy_rt::compare::read::{Content, content};
 use legacy_rt::compare::{self, Report, Settings, Tolerance, Verdict};
 use legacy_rt::render::{DEFAULT_MAX_DIST, Stage, Variant};
@@ -143,6 +143,23 @@ pub fn run(args: &CompareArgs) -> Result<bool, Failure> {
 }
 
 fn run_inner(args: &CompareArgs) -> Result<bool, Failure> {
+    if let Some(diff) = &args.diff {
+        // `--diff mine.ppm` would replace the image being graded with its diff.
+        let same = |other: &Path| match (diff.canonicalize(), other.canonicalize()) {
+            (Ok(a), Ok(b)) => a == b,
+            _ => false,
+        };
+        if same(&args.student) || same(&args.reference) {
+            return Err(Failure(
+                format!(
+                    "error: --diff {} names a file being compared; give the diff image \
+                     another name",
+                    diff.display()
+                ),
+                2,
+            ));
+        }
+    }
     let diff = output_file(args.diff.as_deref())?;
     args.how.check()?;
     let first = read_file(&args.reference)?;
@@ -161,7 +178,8 @@ fn run_inner(args: &CompareArgs) -> Result<bool, Failure> {
             let text = String::from_utf8_lossy(&first);
             let scene =
                 legacy_rt::load(&text).map_err(|error| Failure(format!("{shown}: {error}"), 2))?;
-            let (w, h) = (student.width as u64, student.height as u64);
+            let given = (Some(student.width as u64), Some(student.height as u64));
+            let (w, h) = size(given, &scene)?;
             let options = legacy_rt::Options {
                 threads: args.threads,
                 ..args.how.options(w, h)?

@@ -313,6 +313,7 @@ fn errors_are_exit_2_with_a_message() {
     let wide = write("wide.ppm", b"P6 1 1 65535\n\x01\x00\x02\x00\x03\x00");
     let jpeg = write("photo.ppm", b"\xff\xd8\xff\xe0\x00\x10JFIF");
     let bad_scene = write("bad.txt", b"8 6\n0 0 3\n13\n1 1 one\n");
+    let one_pixel = write("dot.ppm", b"P6 1 1 255\n\x01\x02\x03");
     let spheres = "examples/spheres.txt";
     let good = good.to_str().unwrap();
     let missing = dir.join("missing.ppm");
@@ -336,6 +337,11 @@ fn errors_are_exit_2_with_a_message() {
             vec!["--variant", "no-distance,segment-distance", spheres, good],
             "same rule",
         ),
+        (
+            vec!["--diff", good, spheres, good],
+            "names a file being compared",
+        ),
+        (vec![spheres, &one_pixel], "at least 2x2"),
     ];
     for (args, expected) in cases {
         let output = compare(&args);
@@ -348,6 +354,8 @@ fn errors_are_exit_2_with_a_message() {
         assert!(output.stdout.is_empty(), "{args:?}");
     }
     assert!(!Path::new("diff.jpg").exists());
+    // The image that --diff named was not touched.
+    assert_eq!(read_ppm(Path::new(good)).0, 16);
 }
 
 #[test]
