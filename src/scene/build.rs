@@ -323,7 +323,7 @@ fn object(record: &Record) -> Result<Object, Refusal> {
             for (c, number) in coefficients.iter_mut().zip(&record.coefficients) {
                 *c = number.value;
             }
-            Shape::Quadric(Quadric::new(coefficients).map_err(&refused)?)
+            Shape::Quadric(Box::new(Quadric::new(coefficients).map_err(&refused)?))
         }
     };
     Ok(Object {

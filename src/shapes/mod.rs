@@ -253,8 +253,10 @@ pub enum Shape {
     Cone(Cone),
     /// 24: a finite hyperboloid of one sheet.
     Hyperboloid(Hyperboloid),
-    /// `QUADRIC`: the general quadric x^T Q x = 0.
-    Quadric(Quadric),
+    /// `QUADRIC`: the general quadric x^T Q x = 0. Boxed: it is the largest shape (408
+    /// bytes, with its matrices), and every object of a scene is as large as the largest
+    /// shape.
+    Quadric(Box<Quadric>),
 }
 
 impl Shape {

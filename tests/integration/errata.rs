@@ -38,7 +38,7 @@ fn note_000_ellipsoid_divides_by_the_squared_semi_axes() {
     }
     // The tracer, given the squared form as a QUADRIC, is hit at x = a by a ray down the
     // x axis.
-    let ellipsoid = Shape::Quadric(ellipsoid(a, b, c));
+    let ellipsoid = Shape::Quadric(Box::new(ellipsoid(a, b, c)));
     let t = ellipsoid
         .hit(&ray([10.0, 0.0, 0.0], [-1.0, 0.0, 0.0]))
         .unwrap();

@@ -79,7 +79,7 @@ fn scale_shape(shape: &Shape, s: f64) -> Shape {
             // f(P / s) s²: the quadratic terms stay, the linear ones gain s, J gains s².
             let [a, b, c, d, e, f, g, h, i, j] = x.coefficients;
             let coefficients = [a, b, c, d * s, e, f, g * s, h, i * s, j * s * s];
-            Shape::Quadric(Quadric::new(coefficients).unwrap())
+            Shape::Quadric(Box::new(Quadric::new(coefficients).unwrap()))
         }
     }
 }

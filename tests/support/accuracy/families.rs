@@ -325,7 +325,7 @@ pub fn suite() -> Vec<Family> {
                     .find(|f| f.shape == *from_shape && f.name == *from_name)
                     .expect("the table names an earlier family");
                 let rewrite = |case: &Case| Case {
-                    shape: Shape::Quadric(general_quadric_of(&case.shape)),
+                    shape: Shape::Quadric(Box::new(general_quadric_of(&case.shape))),
                     ray: case.ray,
                 };
                 source.cases.iter().map(rewrite).collect()
