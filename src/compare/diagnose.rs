@@ -5,7 +5,8 @@
 //! than the reference does are listed, best first, and the best is tried together with
 //! each other variant.
 //! MAX_DIST is not guessed from a list: one render with long paths records each pixel's
-//! colour after each mirror bounce ([`render::path_colours`]), which gives the image
+//! bytes after each mirror bounce that changes them ([`render::path_bytes`]), which gives
+//! the image
 //! under every MAX_DIST at once, and the best D is read off ([`estimate_max_dist`]).
 
 use super::{agreement, pixel_difference};
@@ -143,10 +144,8 @@ pub fn estimate_max_dist(
         max_dist: PROBE_LIMIT.max(options.max_dist),
         ..*options
     };
-    let paths = render::path_colours(scene, &probe);
-    let byte = |colour: glam::DVec3| colour.to_array().map(|c| options.deviations.bytes.byte(c));
-    let within =
-        |pixel: usize, colour| pixel_difference(byte(colour), student.pixels[pixel]) <= levels;
+    let paths = render::path_bytes(scene, &probe);
+    let within = |pixel: usize, bytes| pixel_difference(bytes, student.pixels[pixel]) <= levels;
     // Each pixel's state under D = 0+ (the camera ray's segment only), then the changes
     // as D passes each later segment's start.
     let mut state: Vec<bool> = (paths.iter().enumerate())

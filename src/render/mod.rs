@@ -340,29 +340,48 @@ pub fn first_hits(scene: &Scene, options: &Options) -> Vec<Option<usize>> {
     dispatch(options, Job(scene, options))
 }
 
-/// One pixel's colour for every MAX_DIST: `(start, colour)` for each segment of its path
-/// (the camera ray first, then each mirror bounce), where `start` is the path's length
-/// where the segment starts and `colour` the pixel's colour with that segment added.
-/// Under MAX_DIST D the pixel's colour is that of the last segment with start <= D
-/// (spec §4.2 step 1).
-pub type PathColours = Vec<(f64, DVec3)>;
+/// One pixel's bytes for every MAX_DIST: `(start, bytes)` where the pixel's bytes change
+/// along its path (the camera ray first, then each mirror bounce): `start` is the path's
+/// length where a segment starts and `bytes` the pixel with that segment added (under the
+/// options' byte rule). Under MAX_DIST D the pixel is the `bytes` of the last entry with
+/// start <= D (spec §4.2 step 1). Segments that change no byte (deep bounces between two
+/// mirrors) are left out, which keeps the list short.
+pub type PathBytes = Vec<(f64, [u8; 3])>;
 
-/// [`PathColours`] of every pixel, in output order, for paths up to `options.max_dist`:
-/// the image under every smaller MAX_DIST at the cost of one render.
-pub fn path_colours(scene: &Scene, options: &Options) -> Vec<PathColours> {
-    /// Keeps each segment's start and the colour after it.
-    struct Path(PathColours);
+/// [`PathBytes`] of every pixel, in output order, for paths up to `options.max_dist`: the
+/// image under every smaller MAX_DIST at the cost of one render.
+pub fn path_bytes(scene: &Scene, options: &Options) -> Vec<PathBytes> {
+    /// Keeps each segment's start and the colour after it, dropping a segment as soon as
+    /// it is known to change no byte.
+    struct Path {
+        entries: Vec<(f64, DVec3)>,
+        bytes: variant::Bytes,
+    }
+    impl Path {
+        fn to_bytes(&self, colour: DVec3) -> [u8; 3] {
+            colour.to_array().map(|c| self.bytes.byte(c))
+        }
+        /// Drops the last entry if it changed no byte of the one before.
+        fn settle(&mut self) {
+            if let [.., (_, before), (_, last)] = self.entries[..]
+                && self.to_bytes(before) == self.to_bytes(last)
+            {
+                self.entries.pop();
+            }
+        }
+    }
     impl Recorder for Path {
         const ENABLED: bool = true;
         const EVERY_TEST: bool = false;
         fn record(&mut self, event: impl FnOnce() -> Event) {
             match event() {
                 Event::Segment { total_dist, .. } => {
-                    let colour = self.0.last().map_or(DVec3::ZERO, |&(_, c)| c);
-                    self.0.push((total_dist, colour));
+                    self.settle();
+                    let colour = self.entries.last().map_or(DVec3::ZERO, |&(_, c)| c);
+                    self.entries.push((total_dist, colour));
                 }
                 Event::Divided { colour, .. } => {
-                    if let Some(last) = self.0.last_mut() {
+                    if let Some(last) = self.entries.last_mut() {
                         last.1 = colour;
                     }
                 }
@@ -372,20 +391,28 @@ pub fn path_colours(scene: &Scene, options: &Options) -> Vec<PathColours> {
     }
     struct Job<'a>(&'a Scene, &'a Options);
     impl WithTracer for Job<'_> {
-        type Output = Vec<PathColours>;
+        type Output = Vec<PathBytes>;
         fn run<K: Kernel, V: Rules>(self) -> Self::Output {
             let Job(scene, options) = self;
             let scene = options.deviations.scene(scene);
             let tracer = Tracer::<K, V>::new(&scene, options);
             let path = |ray: Option<Ray>, stats: &mut Stats| {
-                let mut path = Path(Vec::new());
+                let bytes = options.deviations.bytes;
+                let mut path = Path {
+                    entries: vec![],
+                    bytes,
+                };
                 match ray {
                     Some(ray) => {
                         tracer.trace(ray, stats, &mut path);
+                        path.settle();
                     }
-                    None => path.0.push((0.0, DVec3::ZERO)),
+                    None => path.entries.push((0.0, DVec3::ZERO)),
                 }
-                path.0
+                let entries = path.entries.iter();
+                entries
+                    .map(|&(start, c)| (start, path.to_bytes(c)))
+                    .collect()
             };
             map_pixels(&scene, options, path)
         }
