@@ -121,7 +121,7 @@ impl Kernel for Accurate {
         axis_hit(quadric, ray)
     }
 
-    /// Most rays of a scene miss most spheres: [`certainly_misses`] says so in a few
+    /// Most rays of a scene miss most spheres: `certainly_misses` says so in a few
     /// plain f64 operations, and only the other rays take the accurate path.
     #[inline]
     fn sphere(sphere: &Sphere, ray: &Ray) -> Option<f64> {
