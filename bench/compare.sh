@@ -53,7 +53,7 @@ done
 # Tachyon: the twins of bench/tachyon_twins.py, shadows on (-fullshade), no
 # anti-aliasing, one thread.
 python3 bench/tachyon_twins.py "$out"
-for name in small many; do
+for name in twin_small twin_many; do
     echo "$name (legacy-rt vs Tachyon, bench/tachyon_twins.py)"
     python3 bench/alternate.py --runs "$RUNS" \
         "legacy-rt=target/release/legacy-rt $WIDTH $HEIGHT < $out/$name.txt > $out/$name-twin.ppm" \

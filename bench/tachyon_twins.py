@@ -3,8 +3,8 @@
 legacy-rt and as a Tachyon .dat file with the same geometry, into the folder given
 (default target/bench):
 
-  small.txt / small.dat   a floor, a wall, 3 spheres, 2 open cylinders, one light
-  many.txt  / many.dat    a floor, 64 spheres and 48 open cylinders (113 objects), one light
+  twin_small.txt / .dat   a floor, a wall, 3 spheres, 2 open cylinders, one light
+  twin_many.txt  / .dat   a floor, 64 spheres and 48 open cylinders (113 objects), one light
 
 The cameras coincide: legacy-rt's eye at (0, 0, 3) looks through the 8 x 6 window at
 z = 0, a horizontal half-angle of atan(4/3); Tachyon's camera at the same point with
@@ -68,7 +68,7 @@ def main():
     os.makedirs(folder, exist_ok=True)
     floor = ((0, 1, 0), (0, -3, 0), (0.6, 0.6, 0.6))
     wall = ((0, 0, 1), (0, 0, -14), (0.3, 0.3, 0.8))
-    write(folder, "small",
+    write(folder, "twin_small",
           spheres=[((-2, -1.5, -7), 1.5, (1, 0.2, 0.2)), ((1.5, -2, -6), 1, (0.2, 1, 0.2)),
                    ((0.5, 0.5, -10), 1.2, (0.2, 0.2, 1))],
           cylinders=[((3, -3, -9), 3, 0.6, (1, 1, 0.2)), ((-4, -3, -11), 4, 0.8, (1, 0.2, 1))],
@@ -77,7 +77,7 @@ def main():
                for i in range(8) for j in range(8)]
     cylinders = [((-6 + 2 * i, -3, -7 - 2 * j), 1.5, 0.3, (0.3, 1, 0.3 + 0.05 * j))
                  for i in range(7) for j in range(7)][:48]
-    write(folder, "many", spheres=spheres, cylinders=cylinders, planes=[floor])
+    write(folder, "twin_many", spheres=spheres, cylinders=cylinders, planes=[floor])
 
 if __name__ == "__main__":
     main()
