@@ -229,8 +229,10 @@ fn render_with<K: Kernel, V: Rules>(
     // One output row: pixel y = height - 1 - row (spec §4.1, top row first).
     let render_row = |row: usize, out: &mut [[u8; 3]]| {
         let mut stats = Stats::default();
-        let y = match V::DEVIATES && options.deviations.upside_down {
-            true => row,
+        // Output row r holds pixel row y = H - 1 - r (spec §4.1), or y = r upside down;
+        // the rules as specified need no look at the options.
+        let y = match V::DEVIATES {
+            true => options.row_of(row),
             false => height - 1 - row,
         };
         for (x, pixel) in out.iter_mut().enumerate() {
