@@ -28,4 +28,4 @@ pub mod shapes;
 
 pub use error::SceneError;
 pub use render::{Image, Options, render};
-pub use scene::{Scene, dump, load};
+pub use scene::{Scene, dump, load, load_with};

@@ -6,9 +6,7 @@
 use super::render::write_image;
 use super::{Failure, HowArgs, output_file, size, threads};
 use legacy_rt::compare::read::{Content, content};
-use legacy_rt::compare::{self, Report, Settings, Tolerance, Verdict};
-use legacy_rt::render::{DEFAULT_MAX_DIST, Stage, Variant};
-use legacy_rt::shapes::kernel::KernelChoice;
+use legacy_rt::compare::{self, Settings, Tolerance, Verdict};
 use std::io::Read;
 use std::path::{Path, PathBuf};
 
@@ -119,21 +117,8 @@ fn read_file(path: &Path) -> Result<Vec<u8>, Failure> {
 /// An image file, or exit 2 naming it and what is wrong.
 fn read_image(path: &Path, role: &str) -> Result<legacy_rt::Image, Failure> {
     let bytes = read_file(path)?;
-    let shown = path.display();
-    if content(&bytes) == Content::Text && role == "student's image" {
-        let hint = match bytes.first() {
-            Some(b'0'..=b'9' | b'-' | b'+' | b'.') => {
-                ": it looks like a scene file; the scene comes first, the image second"
-            }
-            _ => "",
-        };
-        return Err(Failure(
-            format!("error: {shown} (the {role}) is not a PPM or PNG image{hint}"),
-            2,
-        ));
-    }
-    compare::read_image(&bytes)
-        .map_err(|error| Failure(format!("error: {shown} (the {role}): {error}"), 2))
+    let shown = path.display().to_string();
+    compare::read::image_named(&bytes, &shown, role).map_err(|message| Failure(message, 2))
 }
 
 /// Compares; `Ok(true)` when the images match.
@@ -204,7 +189,11 @@ fn run_inner(args: &CompareArgs) -> Result<bool, Failure> {
         .map_err(|error| Failure(format!("error: {error}"), 2))?;
     if let Some(options) = &options {
         for worst in &mut report.worst {
-            worst.trace = Some(trace_command(&args.how, options, &shown, worst.x, worst.y));
+            let (x, y) = (worst.x, worst.y);
+            let choices = args.how.choices();
+            worst.trace = Some(compare::text::trace_command(
+                &choices, options, &shown, x, y,
+            ));
         }
     }
     if let Some(diff) = diff {
@@ -212,233 +201,20 @@ fn run_inner(args: &CompareArgs) -> Result<bool, Failure> {
             .map_err(|error| Failure(format!("error: {error}"), 2))?;
         write_image(&image, diff.format, Some(diff))?;
     }
+    let choices = options.is_some().then(|| args.how.choices());
     let out = match args.json {
         true => {
             let json = serde_json::to_string_pretty(&report)
                 .map_err(|error| Failure(format!("error: {error}"), 2))?;
             json + "\n"
         }
-        false => text(
+        false => compare::text::text(
             &report,
             &shown,
             &args.student.display().to_string(),
-            options.as_ref(),
-            &args.how,
+            choices.as_ref(),
         ),
     };
     super::io::emit_to_stdout(out.as_bytes())?;
     Ok(report.verdict == Verdict::Match)
-}
-
-/// `path` as a shell word: as it is when it needs no quoting.
-fn shell_word(path: &str) -> String {
-    let plain = |c: char| c.is_ascii_alphanumeric() || "_./-+,:=@%".contains(c);
-    if !path.is_empty() && path.chars().all(plain) {
-        return path.to_string();
-    }
-    format!("'{}'", path.replace('\'', r"'\''"))
-}
-
-/// The options that made the reference, as command-line flags.
-fn flags(how: &HowArgs, options: &legacy_rt::Options) -> String {
-    let mut flags = String::new();
-    if how.max_dist != DEFAULT_MAX_DIST {
-        flags += &format!(" --max-dist {}", how.max_dist);
-    }
-    if how.kernel != KernelChoice::Accurate {
-        flags += &format!(" --kernel {}", how.kernel.name());
-    }
-    if let Some(show) = options.show {
-        flags += &format!(" --show {}", show.name());
-    } else if options.stage != Stage::Full {
-        flags += &format!(" --stage {}", options.stage.name());
-    }
-    if !how.variant.is_empty() {
-        let ids: Vec<_> = how.variant.iter().map(|v| v.id()).collect();
-        flags += &format!(" --variant {}", ids.join(","));
-    }
-    flags
-}
-
-/// The `trace` command that explains the reference's pixel (x, y).
-fn trace_command(
-    how: &HowArgs,
-    options: &legacy_rt::Options,
-    scene: &str,
-    x: usize,
-    y: usize,
-) -> String {
-    let (w, h) = (options.width, options.height);
-    let flags = flags(how, options);
-    format!(
-        "legacy-rt trace {x} {y} {w} {h}{flags} < {}",
-        shell_word(scene)
-    )
-}
-
-/// 1234567 as "1,234,567".
-fn thousands(n: usize) -> String {
-    let digits = n.to_string();
-    let mut out = String::new();
-    for (i, c) in digits.chars().enumerate() {
-        if i > 0 && (digits.len() - i).is_multiple_of(3) {
-            out.push(',');
-        }
-        out.push(c);
-    }
-    out
-}
-
-/// A share (0 to 1) as a percentage with enough decimals to tell small ones apart.
-fn percent_of(share: f64) -> String {
-    let p = share * 100.0;
-    match p {
-        _ if p == 0.0 || p >= 10.0 => format!("{p:.0} %"),
-        _ if p >= 1.0 => format!("{p:.1} %"),
-        _ => format!("{p:.2} %"),
-    }
-}
-
-/// How many groups the text report lists; `--json` has them all.
-const GROUPS_SHOWN: usize = 8;
-
-/// "1 pixel differs", "1,204 pixels differ".
-fn pixels_differ(n: usize) -> String {
-    match n {
-        1 => "1 pixel differs".to_string(),
-        n => format!("{} pixels differ", thousands(n)),
-    }
-}
-
-/// An agreement (0 to 1) in percent, rounded down to two decimals so that only a full
-/// agreement shows as 100.00 %.
-fn agreement(share: f64) -> String {
-    format!("{:.2} %", (share * 10_000.0).floor() / 100.0)
-}
-
-/// The plain-text report.
-fn text(
-    report: &Report,
-    reference: &str,
-    student: &str,
-    options: Option<&legacy_rt::Options>,
-    how: &HowArgs,
-) -> String {
-    use std::fmt::Write;
-    let mut out = String::new();
-    let mut line = |text: String| {
-        let _ = writeln!(out, "{text}");
-    };
-    let (w, h) = (report.width, report.height);
-    match options {
-        Some(options) => {
-            let flags = flags(how, options);
-            let how = match flags.is_empty() {
-                true => String::new(),
-                false => format!(" with{flags}"),
-            };
-            line(format!("reference: {reference}, rendered at {w}x{h}{how}"));
-        }
-        None => line(format!("reference: {reference}")),
-    }
-    line(format!("student:   {student}"));
-    line(format!(
-        "size: {w}x{h}, {} pixels compared",
-        thousands(report.pixels)
-    ));
-    line(format!(
-        "beyond the tolerance of {} levels: {} pixels ({}); {} may be",
-        report.tolerance,
-        thousands(report.differing_pixels),
-        percent_of(report.differing_fraction),
-        percent_of(report.allow)
-    ));
-    line(format!(
-        "largest channel difference: {}",
-        report.max_channel_difference
-    ));
-    line(format!(
-        "mean absolute error: {:.3} levels per channel",
-        report.mean_absolute_error
-    ));
-    let verdict = match report.verdict {
-        Verdict::Match => "match",
-        Verdict::Differ => "differ",
-    };
-    line(format!("verdict: {verdict}"));
-    if !report.groups.is_empty() {
-        line(String::new());
-        line("differing pixels by what the reference ray hits first:".to_string());
-        for group in report.groups.iter().take(GROUPS_SHOWN) {
-            let name = match group.line {
-                Some(at) => format!("{} (line {at})", group.object),
-                None => group.object.clone(),
-            };
-            line(format!(
-                "  {name}: {}, {} of the differences",
-                pixels_differ(group.pixels),
-                percent_of(group.share)
-            ));
-        }
-        let rest = &report.groups[report.groups.len().min(GROUPS_SHOWN)..];
-        if !rest.is_empty() {
-            let pixels = rest.iter().map(|g| g.pixels).sum();
-            let share = rest.iter().map(|g| g.share).sum();
-            line(format!(
-                "  {} more objects: {}, {} of the differences (--json lists them all)",
-                rest.len(),
-                pixels_differ(pixels),
-                percent_of(share)
-            ));
-        }
-    }
-    if !report.worst.is_empty() {
-        line(String::new());
-        line("worst pixels, (0, 0) at the lower left: reference -> student".to_string());
-        for worst in &report.worst {
-            let [r, g, b] = worst.reference;
-            let [sr, sg, sb] = worst.student;
-            let at = format!("({}, {})", worst.x, worst.y);
-            let mut text = format!(
-                "  {at:<12} {r:3} {g:3} {b:3} -> {sr:3} {sg:3} {sb:3}  (by {:3})",
-                worst.difference
-            );
-            if let Some(trace) = &worst.trace {
-                text += &format!("  {trace}");
-            }
-            line(text);
-        }
-    }
-    if let Some(diagnosis) = &report.diagnosis {
-        line(String::new());
-        if diagnosis.is_empty() {
-            line(
-                match report.differing_pixels {
-                    0 => "diagnosis: nothing to explain, every pixel is within the tolerance",
-                    _ => "diagnosis: no variant explains the differences better than the reference",
-                }
-                .to_string(),
-            );
-        } else {
-            let before = diagnosis[0].agreement_before;
-            line(format!(
-                "diagnosis: the reference agrees with {} of the student's pixels; rendered as \
-                 if with",
-                agreement(before)
-            ));
-            for found in diagnosis {
-                let ids = found.variants.join(",");
-                let about: Vec<String> = (found.variants.iter())
-                    .filter_map(|id| Variant::parse(id).ok())
-                    .map(Variant::describe)
-                    .collect();
-                line(format!(
-                    "  --variant {ids}: {} ({})",
-                    agreement(found.agreement_after),
-                    about.join("; ")
-                ));
-            }
-        }
-    }
-    out
 }

@@ -8,7 +8,7 @@ pub mod trace;
 
 use clap::{Parser, Subcommand};
 use legacy_rt::image_output::file::OutputFile;
-use legacy_rt::render::{DEFAULT_MAX_DIST, MAX_THREADS, Show, Stage, Variant};
+use legacy_rt::render::{Choices, DEFAULT_MAX_DIST, MAX_THREADS, Show, Stage, Variant};
 use legacy_rt::shapes::kernel::KernelChoice;
 use std::io::Write;
 use std::path::PathBuf;
@@ -149,30 +149,26 @@ pub struct HowArgs {
 }
 
 impl HowArgs {
-    /// Fails on an option no render can take (before the scene is read).
-    pub fn check(&self) -> Result<(), Failure> {
-        if self.max_dist.is_nan() || self.max_dist <= 0.0 {
-            return Err(usage(format!(
-                "--max-dist must be greater than 0, found {}",
-                self.max_dist
-            )));
-        }
-        Ok(())
-    }
-
-    /// The library's options for a `width` x `height` image.
-    pub fn options(&self, width: u64, height: u64) -> Result<legacy_rt::Options, Failure> {
-        self.check()?;
-        let options = legacy_rt::Options {
+    /// The choices these options make.
+    pub fn choices(&self) -> Choices {
+        Choices {
             max_dist: self.max_dist,
             kernel: self.kernel,
             stage: self.stage,
             show: self.show,
-            ..legacy_rt::Options::new(width as usize, height as usize)
-        };
-        self.variant.iter().try_fold(options, |options, &variant| {
-            (options.with_variant(variant)).map_err(|conflict| usage(conflict.to_string()))
-        })
+            variants: self.variant.clone(),
+        }
+    }
+
+    /// Fails on an option no render can take (before the scene is read).
+    pub fn check(&self) -> Result<(), Failure> {
+        self.choices().check().map_err(usage)
+    }
+
+    /// The library's options for a `width` x `height` image.
+    pub fn options(&self, width: u64, height: u64) -> Result<legacy_rt::Options, Failure> {
+        let choices = self.choices();
+        (choices.options(width as usize, height as usize)).map_err(usage)
     }
 }
 
@@ -275,10 +271,7 @@ pub fn size(
     let (width, height) = match given {
         (None, _) => scene.default_size(),
         (Some(w), Some(h)) => (w, h),
-        (Some(w), None) => {
-            let h = (w as f64 * scene.window.y / scene.window.x).round();
-            (w, h.min(u64::MAX as f64) as u64)
-        }
+        (Some(w), None) => (w, scene.height_for(w)),
     };
     let problem = if width < 2 || height < 2 {
         format!(

@@ -9,6 +9,7 @@
 
 mod diagnose;
 pub mod read;
+pub mod text;
 
 pub use diagnose::{Diagnosis, PROBE_LIMIT, diagnose, estimate_max_dist, roundest};
 pub use read::{ReadError, read_image};

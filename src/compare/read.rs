@@ -115,6 +115,23 @@ pub fn read_image(bytes: &[u8]) -> Result<Image, ReadError> {
     })
 }
 
+/// The image in a file's `bytes`, or the message `legacy-rt compare` gives: `shown` names
+/// the file and `role` what it is ("student's image" or "reference image").
+pub fn image_named(bytes: &[u8], shown: &str, role: &str) -> Result<Image, String> {
+    if content(bytes) == Content::Text && role == "student's image" {
+        let hint = match bytes.first() {
+            Some(b'0'..=b'9' | b'-' | b'+' | b'.') => {
+                ": it looks like a scene file; the scene comes first, the image second"
+            }
+            _ => "",
+        };
+        return Err(format!(
+            "error: {shown} (the {role}) is not a PPM or PNG image{hint}"
+        ));
+    }
+    read_image(bytes).map_err(|error| format!("error: {shown} (the {role}): {error}"))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -8,11 +8,13 @@
 //! every step of one pixel through the same functions ([`trace::Recorder`]).
 
 mod bvh;
+mod choices;
 mod shading;
 pub mod trace;
 pub mod variant;
 
 pub use bvh::{Boxes, Bvh};
+pub use choices::Choices;
 pub use shading::PatternNote;
 pub(crate) use shading::{Screen, material_and_pattern};
 pub use trace::{Event, LightStep, Recorder, Show, Stage, Trace, trace};
@@ -49,7 +51,8 @@ pub struct Options {
     pub kernel: KernelChoice,
     /// Worker threads: 1 renders on the calling thread (the legacy behaviour), 0 uses
     /// every core, and more than [`MAX_THREADS`] counts as `MAX_THREADS`. The image is
-    /// the same bytes for every value.
+    /// the same bytes for every value. Without the `threads` feature (the WebAssembly
+    /// build) every render uses the calling thread.
     pub threads: usize,
     /// Use the bounding volume hierarchy of `src/render/bvh.rs` where the scene has
     /// enough bounded objects for it to pay off; `false` forces the legacy linear scan
@@ -262,42 +265,53 @@ fn in_bands<T: Send>(
     render_row: impl Fn(usize, &mut [T]) -> Stats + Sync,
     progress: &mut impl FnMut(usize),
 ) -> Stats {
-    let (width, height) = (options.width, options.height);
+    let width = options.width;
+    #[cfg(feature = "threads")]
+    if options.threads != 1
+        && let Some(stats) = on_a_pool(options, pixels, &render_row, progress)
+    {
+        return stats;
+    }
     let mut stats = Stats::default();
-    let pool = match options.threads {
-        1 => None,
-        n => rayon::ThreadPoolBuilder::new()
-            .num_threads(n.min(MAX_THREADS))
-            .build()
-            .ok(),
-    };
-    match pool {
-        None => {
-            for (row, out) in pixels.chunks_mut(width).enumerate() {
-                stats += render_row(row, out);
-                progress(row + 1);
-            }
-        }
-        Some(pool) => {
-            // Bands of rows, each spread over the pool, so that progress is reported
-            // from this thread. Every pixel is computed exactly as on one thread; only
-            // the order differs, so the bytes are the same.
-            use rayon::prelude::*;
-            let band = 4 * pool.current_num_threads();
-            for (index, chunk) in pixels.chunks_mut(band * width).enumerate() {
-                let first = index * band;
-                stats += pool.install(|| {
-                    chunk
-                        .par_chunks_mut(width)
-                        .enumerate()
-                        .map(|(row, out)| render_row(first + row, out))
-                        .reduce(Stats::default, |a, b| a + b)
-                });
-                progress((first + band).min(height));
-            }
-        }
+    for (row, out) in pixels.chunks_mut(width).enumerate() {
+        stats += render_row(row, out);
+        progress(row + 1);
     }
     stats
+}
+
+/// [`in_bands`] on a pool of `options.threads` threads; `None` when no pool can be
+/// started (then the caller renders on its own thread).
+#[cfg(feature = "threads")]
+fn on_a_pool<T: Send>(
+    options: &Options,
+    pixels: &mut [T],
+    render_row: &(impl Fn(usize, &mut [T]) -> Stats + Sync),
+    progress: &mut impl FnMut(usize),
+) -> Option<Stats> {
+    use rayon::prelude::*;
+    let (width, height) = (options.width, options.height);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(options.threads.min(MAX_THREADS))
+        .build()
+        .ok()?;
+    // Bands of rows, each spread over the pool, so that progress is reported from this
+    // thread. Every pixel is computed exactly as on one thread; only the order differs,
+    // so the bytes are the same.
+    let mut stats = Stats::default();
+    let band = 4 * pool.current_num_threads();
+    for (index, chunk) in pixels.chunks_mut(band * width).enumerate() {
+        let first = index * band;
+        stats += pool.install(|| {
+            chunk
+                .par_chunks_mut(width)
+                .enumerate()
+                .map(|(row, out)| render_row(first + row, out))
+                .reduce(Stats::default, |a, b| a + b)
+        });
+        progress((first + band).min(height));
+    }
+    Some(stats)
 }
 
 /// `per_pixel` of every camera ray (`None` where the eye is the pixel's world point),

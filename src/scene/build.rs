@@ -1,7 +1,7 @@
 //! Records to typed objects: each record kind's numbers go to its shape's constructor, and
 //! a constructor's complaint is traced back to the number that caused it.
 
-use super::{Beam, Light, Material, Object, Pattern, Scene, Shader, Texture, TextureMode};
+use super::{Beam, Files, Light, Material, Object, Pattern, Scene, Shader, Texture, TextureMode};
 use crate::error::{MeaningError, Pending};
 use crate::scene_file::layout::label::*;
 use crate::scene_file::{Group, GroupData, Record, Sink};
@@ -63,20 +63,26 @@ impl Refusal {
 /// object at once, so the text's records are never all held. The first error in file
 /// order is kept, and the reading goes on, because a syntax error anywhere in the file
 /// is reported before it (as when the whole file was read first).
-pub(super) struct Builder {
+pub(super) struct Builder<'f> {
     scene: Scene,
     error: Option<Pending>,
+    files: &'f dyn Files,
 }
 
-impl Builder {
-    pub(super) fn new() -> Builder {
+impl<'f> Builder<'f> {
+    /// A builder that reads texture files from `files`.
+    pub(super) fn new(files: &'f dyn Files) -> Builder<'f> {
         let scene = Scene {
             window: DVec2::ZERO,
             viewpoint: DVec3::ZERO,
             lights: Vec::new(),
             objects: Vec::new(),
         };
-        Builder { scene, error: None }
+        Builder {
+            scene,
+            error: None,
+            files,
+        }
     }
 
     /// The scene, or its first error with the reader's note on a group that ran across a
@@ -96,7 +102,7 @@ impl Builder {
     }
 }
 
-impl Sink for Builder {
+impl Sink for Builder<'_> {
     fn header(&mut self, window: Group, viewpoint: Group) {
         let result = header(&mut self.scene, &window, &viewpoint);
         self.keep(result);
@@ -112,7 +118,7 @@ impl Sink for Builder {
         };
         let result = match record.layout.code {
             10 | 11 => light(&record).map(|light| self.scene.lights.push(light)),
-            _ => object(&record).map(|object| self.scene.objects.push(object)),
+            _ => object(&record, self.files).map(|object| self.scene.objects.push(object)),
         };
         self.keep(result.map_err(located));
     }
@@ -246,7 +252,7 @@ fn shader(record: &Record) -> Result<Shader, Refusal> {
     }
 }
 
-fn object(record: &Record) -> Result<Object, Refusal> {
+fn object(record: &Record, files: &dyn Files) -> Result<Object, Refusal> {
     let name = record.layout.name;
     let mut pattern = Pattern::Plain;
     let refused = Refusal::of_shape(record.layout.code);
@@ -280,7 +286,7 @@ fn object(record: &Record) -> Result<Object, Refusal> {
             let plane = FinitePlane::new(normal, point, xdir, pair(record, SIZE)?, name)
                 .map_err(&refused)?;
             if record.layout.code == 17 {
-                pattern = texture(record, plane.size)?;
+                pattern = texture(record, plane.size, files)?;
             }
             Shape::FinitePlane(plane)
         }
@@ -336,7 +342,7 @@ fn object(record: &Record) -> Result<Object, Refusal> {
 }
 
 /// The textured plane's texture and mode (spec §5.8), for a rectangle of `size`.
-fn texture(record: &Record, size: DVec2) -> Result<Pattern, Refusal> {
+fn texture(record: &Record, size: DVec2, files: &dyn Files) -> Result<Pattern, Refusal> {
     let mode_value = scalar(record, MODE)?;
     let mode = match mode_value.trunc() {
         1.0 => TextureMode::Fit,
@@ -353,7 +359,7 @@ fn texture(record: &Record, size: DVec2) -> Result<Pattern, Refusal> {
             label,
         }));
     };
-    let texture = read_texture(path).map_err(|reason| {
+    let texture = read_texture(path, files).map_err(|reason| {
         let error = MeaningError::Texture {
             path: path.clone(),
             reason,
@@ -367,19 +373,11 @@ fn texture(record: &Record, size: DVec2) -> Result<Pattern, Refusal> {
     })
 }
 
-/// Reads a binary P6 PPM, rows reordered bottom-up.
-fn read_texture(path: &str) -> Result<Texture, String> {
+/// Reads a binary P6 PPM from `files`, rows reordered bottom-up.
+fn read_texture(path: &str, files: &dyn Files) -> Result<Texture, String> {
     use image::ImageDecoder;
     use image::codecs::pnm::{PnmDecoder, PnmSubtype, SampleEncoding};
-    // A FIFO or a device would block the load or never end; only a file is a texture.
-    if !std::fs::metadata(path)
-        .map_err(|e| e.to_string())?
-        .is_file()
-    {
-        return Err("it is not a regular file".into());
-    }
-    let file = std::fs::File::open(path).map_err(|e| e.to_string())?;
-    let mut decoder = PnmDecoder::new(std::io::BufReader::new(file)).map_err(|e| e.to_string())?;
+    let mut decoder = PnmDecoder::new(files.open(path)?).map_err(|e| e.to_string())?;
     if decoder.subtype() != PnmSubtype::Pixmap(SampleEncoding::Binary) {
         return Err("it is not a binary P6 PPM".into());
     }

@@ -15,12 +15,58 @@ use crate::shapes::Shape;
 use glam::{DVec2, DVec3};
 use std::sync::Arc;
 
-/// Reads and validates a scene; the error points at the line to fix.
+/// Reads and validates a scene, with its texture files from the disk (relative to the
+/// current folder); the error points at the line to fix.
 pub fn load(text: &str) -> Result<Scene, SceneError> {
-    let mut builder = build::Builder::new();
+    load_with(text, &Disk)
+}
+
+/// [`load`] with the texture files (spec §5.8) taken from `files`.
+pub fn load_with(text: &str, files: &dyn Files) -> Result<Scene, SceneError> {
+    let mut builder = build::Builder::new(files);
     crate::scene_file::read_into(text, &mut builder)
         .and_then(|split| builder.finish(split))
         .map_err(|pending| pending.locate(text))
+}
+
+/// Where the texture files a scene names come from.
+pub trait Files {
+    /// The file a scene names (as written there), or why it cannot be read, in the words
+    /// of [`Disk`] so that a missing file reads the same everywhere.
+    fn open(&self, name: &str) -> Result<Box<dyn std::io::BufRead + '_>, String>;
+}
+
+/// Files on the disk, as the command line reads them.
+pub struct Disk;
+
+impl Files for Disk {
+    fn open(&self, name: &str) -> Result<Box<dyn std::io::BufRead + '_>, String> {
+        // A FIFO or a device would block the load or never end; only a file is a texture.
+        if !std::fs::metadata(name)
+            .map_err(|e| e.to_string())?
+            .is_file()
+        {
+            return Err("it is not a regular file".into());
+        }
+        let file = std::fs::File::open(name).map_err(|e| e.to_string())?;
+        Ok(Box::new(std::io::BufReader::new(file)))
+    }
+}
+
+/// Files given by name with their bytes, as a user adds them to the web page.
+pub type InMemory = std::collections::BTreeMap<String, Vec<u8>>;
+
+/// What [`Disk`] says of a file that is not there (Linux's message for ENOENT), so
+/// that the web page's error for a texture the user has not added is the command line's.
+pub const NOT_FOUND: &str = "No such file or directory (os error 2)";
+
+impl Files for InMemory {
+    fn open(&self, name: &str) -> Result<Box<dyn std::io::BufRead + '_>, String> {
+        match self.get(name) {
+            Some(bytes) => Ok(Box::new(bytes.as_slice())),
+            None => Err(NOT_FOUND.to_string()),
+        }
+    }
 }
 
 /// Ambient, diffuse and specular rgb (spec §3.1). Unbounded reals; the specular triple is
@@ -152,8 +198,14 @@ impl Scene {
     /// The default image size of spec §1: width 640, height from the window's aspect
     /// ratio, rounded.
     pub fn default_size(&self) -> (u64, u64) {
-        let height = (640.0 * self.window.y / self.window.x).round();
-        (640, height.clamp(0.0, u32::MAX as f64) as u64)
+        (640, self.height_for(640))
+    }
+
+    /// The height of a `width`-pixel image with the window's aspect ratio, rounded (spec
+    /// §1), at most `u32::MAX`.
+    pub fn height_for(&self, width: u64) -> u64 {
+        let height = (width as f64 * self.window.y / self.window.x).round();
+        height.clamp(0.0, u32::MAX as f64) as u64
     }
 }
 

@@ -29,12 +29,14 @@ fn documents() -> Vec<PathBuf> {
 
 /// The backticked spans of a Markdown text that look like code references.
 fn references(text: &str) -> Vec<String> {
-    let prefixes = ["src/", "tests/", "examples/", "bench/"];
+    let prefixes = ["src/", "tests/", "examples/", "bench/", "web/", "docs/"];
     text.split('`')
         .skip(1)
         .step_by(2)
         .filter(|span| prefixes.iter().any(|p| span.starts_with(p)))
         .filter(|span| !span.contains(char::is_whitespace))
+        // What web/build.sh writes is not in the repository.
+        .filter(|span| !span.starts_with("web/dist"))
         .map(str::to_string)
         .collect()
 }

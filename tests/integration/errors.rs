@@ -98,3 +98,55 @@ fn the_binary_prints_the_error_on_stderr_and_nothing_on_stdout() {
         }
     }
 }
+
+/// Every file under `folder` (relative to the crate's top folder, as the scenes name
+/// them), by that name.
+fn files_under(folder: &str) -> legacy_rt::scene::InMemory {
+    let top = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut files = legacy_rt::scene::InMemory::new();
+    for entry in std::fs::read_dir(top.join(folder)).unwrap() {
+        let path = entry.unwrap().path();
+        if !path.is_file() {
+            continue;
+        }
+        let name = format!("{folder}/{}", path.file_name().unwrap().to_string_lossy());
+        files.insert(name, std::fs::read(&path).unwrap());
+    }
+    files
+}
+
+/// The web page gives the textures a user added instead of the disk: a scene loads to the
+/// same scene, and fails with the same message, wherever its files come from.
+#[test]
+#[cfg(target_os = "linux")]
+fn textures_from_memory_load_and_fail_as_from_the_disk() {
+    // texture_not_p6.txt names a scene file as its texture.
+    let mut files = files_under("examples");
+    files.extend(files_under("examples/textures"));
+    files.extend(files_under("tests/invalid/textures"));
+    let top = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut scenes = scene_files(&invalid_dir());
+    scenes.extend(scene_files(&top.join("examples")));
+    let mut textured = 0;
+    for path in scenes {
+        let text = std::fs::read_to_string(&path).unwrap();
+        // The scenes' file names are relative to the crate's top folder, where cargo
+        // runs the tests.
+        let from_disk = legacy_rt::load(&text);
+        let from_memory = legacy_rt::load_with(&text, &files);
+        textured += text.contains("textures/") as usize;
+        match (from_disk, from_memory) {
+            (Ok(disk), Ok(memory)) => {
+                let options = legacy_rt::Options::new(64, 48);
+                let render = |scene| legacy_rt::render(scene, &options, |_| {}).0;
+                assert_eq!(render(&disk), render(&memory), "{}", path.display());
+            }
+            (Err(disk), Err(memory)) => {
+                assert_eq!(disk.to_string(), memory.to_string(), "{}", path.display())
+            }
+            (disk, memory) => panic!("{}: {disk:?} but {memory:?}", path.display()),
+        }
+    }
+    // Under textures/: the missing, too large and mode-3 textures, and the textured example.
+    assert!(textured >= 4, "{textured}");
+}

@@ -1,0 +1,195 @@
+//! The comparison report as text, as `legacy-rt compare` prints it and the web page
+//! shows it.
+
+use super::{Report, Verdict};
+use crate::Options;
+use crate::render::{Choices, Variant};
+
+/// `path` as a shell word: as it is when it needs no quoting.
+fn shell_word(path: &str) -> String {
+    let plain = |c: char| c.is_ascii_alphanumeric() || "_./-+,:=@%".contains(c);
+    if !path.is_empty() && path.chars().all(plain) {
+        return path.to_string();
+    }
+    format!("'{}'", path.replace('\'', r"'\''"))
+}
+
+/// The `trace` command that explains pixel (x, y) of the reference rendered from the
+/// scene file `scene` at `options`' size with `choices`.
+pub fn trace_command(
+    choices: &Choices,
+    options: &Options,
+    scene: &str,
+    x: usize,
+    y: usize,
+) -> String {
+    let (w, h) = (options.width, options.height);
+    let flags = choices.flags();
+    format!(
+        "legacy-rt trace {x} {y} {w} {h}{flags} < {}",
+        shell_word(scene)
+    )
+}
+
+/// 1234567 as "1,234,567".
+fn thousands(n: usize) -> String {
+    let digits = n.to_string();
+    let mut out = String::new();
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i).is_multiple_of(3) {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
+}
+
+/// A share (0 to 1) as a percentage with enough decimals to tell small ones apart.
+fn percent_of(share: f64) -> String {
+    let p = share * 100.0;
+    match p {
+        _ if p == 0.0 || p >= 10.0 => format!("{p:.0} %"),
+        _ if p >= 1.0 => format!("{p:.1} %"),
+        _ => format!("{p:.2} %"),
+    }
+}
+
+/// How many groups the text report lists; `--json` has them all.
+const GROUPS_SHOWN: usize = 8;
+
+/// "1 pixel differs", "1,204 pixels differ".
+fn pixels_differ(n: usize) -> String {
+    match n {
+        1 => "1 pixel differs".to_string(),
+        n => format!("{} pixels differ", thousands(n)),
+    }
+}
+
+/// An agreement (0 to 1) in percent, rounded down to two decimals so that only a full
+/// agreement shows as 100.00 %.
+fn agreement(share: f64) -> String {
+    format!("{:.2} %", (share * 10_000.0).floor() / 100.0)
+}
+
+/// The report as `legacy-rt compare` prints it: `reference` and `student` name the two
+/// files, and `choices` are those the reference was rendered with (`None` when it is an
+/// image).
+pub fn text(report: &Report, reference: &str, student: &str, choices: Option<&Choices>) -> String {
+    use std::fmt::Write;
+    let mut out = String::new();
+    let mut line = |text: String| {
+        let _ = writeln!(out, "{text}");
+    };
+    let (w, h) = (report.width, report.height);
+    match choices {
+        Some(choices) => {
+            let flags = choices.flags();
+            let how = match flags.is_empty() {
+                true => String::new(),
+                false => format!(" with{flags}"),
+            };
+            line(format!("reference: {reference}, rendered at {w}x{h}{how}"));
+        }
+        None => line(format!("reference: {reference}")),
+    }
+    line(format!("student:   {student}"));
+    line(format!(
+        "size: {w}x{h}, {} pixels compared",
+        thousands(report.pixels)
+    ));
+    line(format!(
+        "beyond the tolerance of {} levels: {} pixels ({}); {} may be",
+        report.tolerance,
+        thousands(report.differing_pixels),
+        percent_of(report.differing_fraction),
+        percent_of(report.allow)
+    ));
+    line(format!(
+        "largest channel difference: {}",
+        report.max_channel_difference
+    ));
+    line(format!(
+        "mean absolute error: {:.3} levels per channel",
+        report.mean_absolute_error
+    ));
+    let verdict = match report.verdict {
+        Verdict::Match => "match",
+        Verdict::Differ => "differ",
+    };
+    line(format!("verdict: {verdict}"));
+    if !report.groups.is_empty() {
+        line(String::new());
+        line("differing pixels by what the reference ray hits first:".to_string());
+        for group in report.groups.iter().take(GROUPS_SHOWN) {
+            let name = match group.line {
+                Some(at) => format!("{} (line {at})", group.object),
+                None => group.object.clone(),
+            };
+            line(format!(
+                "  {name}: {}, {} of the differences",
+                pixels_differ(group.pixels),
+                percent_of(group.share)
+            ));
+        }
+        let rest = &report.groups[report.groups.len().min(GROUPS_SHOWN)..];
+        if !rest.is_empty() {
+            let pixels = rest.iter().map(|g| g.pixels).sum();
+            let share = rest.iter().map(|g| g.share).sum();
+            line(format!(
+                "  {} more objects: {}, {} of the differences (--json lists them all)",
+                rest.len(),
+                pixels_differ(pixels),
+                percent_of(share)
+            ));
+        }
+    }
+    if !report.worst.is_empty() {
+        line(String::new());
+        line("worst pixels, (0, 0) at the lower left: reference -> student".to_string());
+        for worst in &report.worst {
+            let [r, g, b] = worst.reference;
+            let [sr, sg, sb] = worst.student;
+            let at = format!("({}, {})", worst.x, worst.y);
+            let mut text = format!(
+                "  {at:<12} {r:3} {g:3} {b:3} -> {sr:3} {sg:3} {sb:3}  (by {:3})",
+                worst.difference
+            );
+            if let Some(trace) = &worst.trace {
+                text += &format!("  {trace}");
+            }
+            line(text);
+        }
+    }
+    if let Some(diagnosis) = &report.diagnosis {
+        line(String::new());
+        if diagnosis.is_empty() {
+            line(
+                match report.differing_pixels {
+                    0 => "diagnosis: nothing to explain, every pixel is within the tolerance",
+                    _ => "diagnosis: no variant explains the differences better than the reference",
+                }
+                .to_string(),
+            );
+        } else {
+            let before = diagnosis[0].agreement_before;
+            line(format!(
+                "diagnosis: the reference agrees with {} of the student's pixels; rendered as \
+                 if with",
+                agreement(before)
+            ));
+            for found in diagnosis {
+                let ids = found.variants.join(",");
+                let about: Vec<String> = (found.variants.iter())
+                    .filter_map(|id| Variant::parse(id).ok())
+                    .map(Variant::describe)
+                    .collect();
+                line(format!(
+                    "  --variant {ids}: {} ({})",
+                    agreement(found.agreement_after),
+                    about.join("; ")
+                ));
+            }
+        }
+    }
+    out
+}

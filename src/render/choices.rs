@@ -1,0 +1,84 @@
+//! What an image is computed with, as the command line's shared options (and the web
+//! page's controls) name it: the choices behind an [`Options`], and the flags that
+//! reproduce them.
+
+use super::{DEFAULT_MAX_DIST, Options, Show, Stage, Variant};
+use crate::shapes::kernel::KernelChoice;
+
+/// `--max-dist`, `--kernel`, `--stage`, `--show` and `--variant`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Choices {
+    /// Paths of rays longer than this are black (spec §4.2).
+    pub max_dist: f64,
+    /// How hit distances are computed.
+    pub kernel: KernelChoice,
+    /// The course's assignment (spec §7.2).
+    pub stage: Stage,
+    /// A diagnostic image instead of the stage's.
+    pub show: Option<Show>,
+    /// The students' mistakes rendered (spec §7.3), in the order given.
+    pub variants: Vec<Variant>,
+}
+
+impl Default for Choices {
+    fn default() -> Choices {
+        Choices {
+            max_dist: DEFAULT_MAX_DIST,
+            kernel: KernelChoice::Accurate,
+            stage: Stage::Full,
+            show: None,
+            variants: Vec::new(),
+        }
+    }
+}
+
+impl Choices {
+    /// Fails on a choice no render can take, before any scene is read.
+    pub fn check(&self) -> Result<(), String> {
+        if self.max_dist.is_nan() || self.max_dist <= 0.0 {
+            return Err(format!(
+                "--max-dist must be greater than 0, found {}",
+                self.max_dist
+            ));
+        }
+        Ok(())
+    }
+
+    /// The options for a `width` x `height` render (one thread), or why the choices
+    /// cannot go together (two variants replacing one rule).
+    pub fn options(&self, width: usize, height: usize) -> Result<Options, String> {
+        self.check()?;
+        let options = Options {
+            max_dist: self.max_dist,
+            kernel: self.kernel,
+            stage: self.stage,
+            show: self.show,
+            ..Options::new(width, height)
+        };
+        (self.variants.iter()).try_fold(options, |options, &variant| {
+            (options.with_variant(variant)).map_err(|conflict| conflict.to_string())
+        })
+    }
+
+    /// The command-line flags that make these choices, each with a leading space; empty
+    /// for the defaults.
+    pub fn flags(&self) -> String {
+        let mut flags = String::new();
+        if self.max_dist != DEFAULT_MAX_DIST {
+            flags += &format!(" --max-dist {}", self.max_dist);
+        }
+        if self.kernel != KernelChoice::Accurate {
+            flags += &format!(" --kernel {}", self.kernel.name());
+        }
+        if let Some(show) = self.show {
+            flags += &format!(" --show {}", show.name());
+        } else if self.stage != Stage::Full {
+            flags += &format!(" --stage {}", self.stage.name());
+        }
+        if !self.variants.is_empty() {
+            let ids: Vec<_> = self.variants.iter().map(|v| v.id()).collect();
+            flags += &format!(" --variant {}", ids.join(","));
+        }
+        flags
+    }
+}

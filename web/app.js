@@ -1,0 +1,519 @@
+// The page: the scene editor, the image, the trace panel and the comparison. All the
+// work is the library's, in a Web Worker (worker.js); this file only wires the controls
+// to it and draws what comes back.
+
+const $ = (id) => document.getElementById(id);
+
+// ---- The worker: requests as promises; a render in flight is cancelled by ending it.
+
+class Renderer {
+  constructor() {
+    this.files = new Map(); // texture files, re-sent to a new worker
+    this.spawn();
+  }
+
+  spawn() {
+    this.worker = new Worker('worker.js', { type: 'module' });
+    this.pending = new Map();
+    this.next = 0;
+    this.worker.onmessage = ({ data }) => {
+      const request = this.pending.get(data.id);
+      this.pending.delete(data.id);
+      if (!request) return;
+      if ('error' in data) request.reject(data.error);
+      else request.resolve(data.result);
+    };
+    this.worker.onerror = (event) => {
+      for (const request of this.pending.values()) {
+        request.reject({ message: `the renderer stopped: ${event.message}` });
+      }
+      this.pending.clear();
+    };
+    for (const [name, bytes] of this.files) this.call('addFile', { name, bytes: bytes.slice() });
+  }
+
+  call(op, args = {}) {
+    const id = this.next++;
+    return new Promise((resolve, reject) => {
+      this.pending.set(id, { resolve, reject });
+      this.worker.postMessage({ id, op, ...args });
+    });
+  }
+
+  busy() {
+    return this.pending.size > 0;
+  }
+
+  // Ends the worker and whatever it computes; its requests fail as cancelled.
+  cancel() {
+    this.worker.terminate();
+    for (const request of this.pending.values()) request.reject({ cancelled: true });
+    this.spawn();
+  }
+
+  addFile(name, bytes) {
+    this.files.set(name, bytes);
+    return this.call('addFile', { name, bytes: bytes.slice() });
+  }
+}
+
+const renderer = new Renderer();
+
+// ---- State.
+
+const state = {
+  sceneName: 'scene.txt',
+  generation: 0, // bumped by every edit: answers to an older one are dropped
+  full: null, // the last full-size render: { width, height, ms }
+  picked: null, // the traced pixel: { x, row } in the full-size image
+  student: null, // the compared image: { name, bytes }
+  comparison: null,
+  openedAt: null, // when the scene was opened, until its first picture is shown
+  firstPicture: null, // how long that took, in ms
+};
+
+function setState(name) {
+  document.body.dataset.state = name;
+}
+
+function choices() {
+  const maxDist = Number($('max-dist').value);
+  return {
+    stage: $('stage').value,
+    show: $('show').value || null,
+    kernel: $('kernel').value,
+    max_dist: Number.isFinite(maxDist) && $('max-dist').value !== '' ? maxDist : null,
+    variants: $('variant-ids').value,
+  };
+}
+
+function requestedSize() {
+  const width = Math.trunc(Number($('width').value)) || 640;
+  const height = Math.trunc(Number($('height').value)) || 0; // 0: from the world window
+  return { width, height };
+}
+
+// ---- The editor: line numbers, and the error's line marked.
+
+const editor = $('scene');
+
+function lineCount() {
+  let lines = 1;
+  for (const c of editor.value) if (c === '\n') lines++;
+  return lines;
+}
+
+function drawGutter() {
+  const bad = Number($('error').dataset.line || 0);
+  const numbers = [];
+  for (let line = 1; line <= lineCount(); line++) {
+    numbers.push(line === bad ? `<span class="bad">${line}</span>` : String(line));
+  }
+  $('gutter').innerHTML = numbers.join('\n') + '\n';
+  placeLineMark();
+}
+
+function placeLineMark() {
+  const bad = Number($('error').dataset.line || 0);
+  const mark = $('line-mark');
+  mark.hidden = !bad;
+  if (!bad) return;
+  const lineHeight = parseFloat(getComputedStyle(editor).lineHeight);
+  const top = parseFloat(getComputedStyle(editor).paddingTop);
+  mark.style.top = `${top + (bad - 1) * lineHeight - editor.scrollTop}px`;
+}
+
+editor.addEventListener('scroll', () => {
+  $('gutter').scrollTop = editor.scrollTop;
+  placeLineMark();
+});
+
+function showError(error) {
+  const box = $('error');
+  if (!error) {
+    box.hidden = true;
+    delete box.dataset.line;
+  } else {
+    box.hidden = false;
+    $('error-text').textContent = error.message;
+    if (error.line) box.dataset.line = error.line;
+    else delete box.dataset.line;
+  }
+  drawGutter();
+}
+
+// ---- Rendering, on every edit (debounced), a quarter-size preview first when slow.
+
+const PREVIEW_ABOVE_MS = 150;
+
+function draw(canvas, rgba, width, height) {
+  canvas.width = width;
+  canvas.height = height;
+  canvas.getContext('2d').putImageData(new ImageData(new Uint8ClampedArray(rgba.buffer), width, height), 0, 0);
+}
+
+function displayWidth(width) {
+  for (const id of ['image']) $(id).style.width = `${width}px`;
+}
+
+async function update() {
+  const generation = ++state.generation;
+  if (renderer.busy()) renderer.cancel();
+  const text = editor.value;
+  const { width, height } = requestedSize();
+  const chosen = choices();
+  setState('rendering');
+  $('status').textContent = 'rendering…';
+  const current = () => generation === state.generation;
+  try {
+    // A quarter-size preview (1/16 of the work) first for a scene just opened, whose
+    // time is unknown, and after a slow render.
+    if ((!state.full || state.full.ms > PREVIEW_ABOVE_MS) && width >= 64) {
+      const w = Math.max(2, Math.round(width / 4));
+      const h = height ? Math.max(2, Math.round(height / 4)) : 0;
+      const preview = await renderer.call('render', { text, width: w, height: h, choices: chosen });
+      if (!current()) return;
+      showError(null);
+      draw($('image'), preview.rgba, preview.width, preview.height);
+      shown();
+      displayWidth(width);
+      $('image').classList.remove('stale');
+      $('status').textContent = `preview at ${preview.width}x${preview.height}; rendering ${width} wide…`;
+    }
+    const image = await renderer.call('render', { text, width, height, choices: chosen });
+    if (!current()) return;
+    showError(null);
+    draw($('image'), image.rgba, image.width, image.height);
+    shown();
+    displayWidth(image.width);
+    $('image').classList.remove('stale');
+    state.full = { width: image.width, height: image.height, ms: image.ms };
+    const { lights, objects } = image.scene;
+    $('status').textContent =
+      `${image.width}x${image.height}, ${objects} objects, ${lights} lights: ${image.ms.toFixed(0)} ms`;
+    if (state.picked) await tracePixel(state.picked.x, state.picked.row);
+    else drawMark();
+    if (state.student) await compareStudent();
+    if (current()) setState('done');
+  } catch (error) {
+    if (error.cancelled || !current()) return;
+    $('image').classList.add('stale');
+    if (error.scene) {
+      showError(error);
+      $('status').textContent = `the scene has an error on line ${error.line}`;
+    } else {
+      showError({ message: `error: ${error.message}` });
+      $('status').textContent = 'nothing rendered';
+    }
+    setState('error');
+  }
+}
+
+// When the first picture of a scene just opened is on the canvas: how long it took.
+function shown() {
+  if (state.openedAt !== null) {
+    state.firstPicture = performance.now() - state.openedAt;
+    state.openedAt = null;
+  }
+}
+
+let timer = null;
+function soon() {
+  clearTimeout(timer);
+  timer = setTimeout(update, 200);
+}
+
+editor.addEventListener('input', () => {
+  drawGutter();
+  soon();
+});
+for (const id of ['width', 'height', 'stage', 'show', 'kernel', 'max-dist']) {
+  $(id).addEventListener('input', soon);
+}
+
+// ---- The trace of a clicked pixel, and the mark on it.
+
+function drawMark() {
+  const mark = $('mark');
+  const full = state.full;
+  if (!full) return;
+  mark.width = full.width;
+  mark.height = full.height;
+  const context = mark.getContext('2d');
+  context.clearRect(0, 0, full.width, full.height);
+  if (!state.picked || state.picked.x >= full.width || state.picked.row >= full.height) return;
+  const { x, row } = state.picked;
+  const reach = Math.max(6, Math.round(full.width / 40));
+  context.fillStyle = 'rgba(0, 255, 0, 0.9)';
+  context.fillRect(x - reach, row, reach - 2, 1);
+  context.fillRect(x + 3, row, reach - 2, 1);
+  context.fillRect(x, row - reach, 1, reach - 2);
+  context.fillRect(x, row + 3, 1, reach - 2);
+  context.strokeStyle = 'rgba(0, 255, 0, 0.9)';
+  context.lineWidth = 1;
+  context.strokeRect(x - 1.5, row - 1.5, 4, 4);
+}
+
+function traceFormat() {
+  return document.querySelector('input[name=format]:checked').value;
+}
+
+async function tracePixel(x, row) {
+  const full = state.full;
+  if (!full) return;
+  state.picked = { x, row };
+  drawMark();
+  const traced = await renderer.call('trace', {
+    text: editor.value, x, row, width: full.width, height: full.height,
+    choices: choices(), format: traceFormat(), sceneName: state.sceneName,
+  });
+  $('trace-title').textContent = `Pixel (${traced.x}, ${traced.y}) of ${full.width}x${full.height}`;
+  $('trace-command').textContent = traced.command;
+  $('trace').textContent = traced.text;
+  $('trace-pane').dataset.pixel = `${traced.x},${traced.y}`;
+  $('trace-pane').dataset.bytes = traced.bytes.join(' ');
+}
+
+$('image').addEventListener('click', async (event) => {
+  const canvas = $('image');
+  const full = state.full;
+  if (!full) return;
+  const box = canvas.getBoundingClientRect();
+  const x = Math.min(full.width - 1, Math.floor(((event.clientX - box.left) / box.width) * full.width));
+  const row = Math.min(full.height - 1, Math.floor(((event.clientY - box.top) / box.height) * full.height));
+  setState('tracing');
+  try {
+    await tracePixel(x, row);
+    setState('done');
+  } catch (error) {
+    if (error.cancelled) return;
+    $('trace').textContent = error.message;
+    setState('error');
+  }
+});
+
+for (const radio of document.querySelectorAll('input[name=format]')) {
+  radio.addEventListener('change', () => state.picked && tracePixel(state.picked.x, state.picked.row));
+}
+
+// ---- Comparing a student's image: the report, the diff over the canvas, the diagnosis.
+
+async function compareStudent() {
+  const { name, bytes } = state.student;
+  $('report').hidden = false;
+  $('report').textContent = `comparing ${name}${$('diagnose').checked ? ' and diagnosing' : ''}…`;
+  try {
+    const result = await renderer.call('compare', {
+      text: editor.value, sceneName: state.sceneName, name, bytes: bytes.slice(),
+      choices: choices(),
+      levels: Math.trunc(Number($('tolerance').value)) || 0,
+      allow: Number($('allow').value) || 0,
+      diagnose: $('diagnose').checked,
+    });
+    state.comparison = result;
+    $('report').textContent = result.text;
+    $('report').dataset.verdict = result.matches ? 'match' : 'differ';
+    draw($('diff'), result.diff, result.width, result.height);
+    $('diff').hidden = !$('show-diff').checked;
+  } catch (error) {
+    if (error.cancelled) throw error;
+    state.comparison = null;
+    $('report').textContent = error.scene ? 'the scene has an error' : error.message;
+    $('report').dataset.verdict = 'error';
+    $('diff').hidden = true;
+  }
+}
+
+async function takeStudent(file) {
+  state.student = { name: file.name, bytes: new Uint8Array(await file.arrayBuffer()) };
+  $('forget-student').hidden = false;
+  setState('comparing');
+  try {
+    await compareStudent();
+    setState('done');
+  } catch (error) {
+    if (!error.cancelled) setState('error');
+  }
+}
+
+$('student').addEventListener('change', (event) => {
+  const [file] = event.target.files;
+  if (file) takeStudent(file);
+  event.target.value = '';
+});
+$('show-diff').addEventListener('change', () => {
+  $('diff').hidden = !($('show-diff').checked && state.comparison);
+});
+for (const id of ['tolerance', 'allow', 'diagnose']) {
+  $(id).addEventListener('change', () => state.student && takeStudent(new File([state.student.bytes], state.student.name)));
+}
+
+const picture = $('picture');
+picture.addEventListener('dragover', (event) => {
+  event.preventDefault();
+  picture.classList.add('dragging');
+});
+picture.addEventListener('dragleave', () => picture.classList.remove('dragging'));
+picture.addEventListener('drop', (event) => {
+  event.preventDefault();
+  picture.classList.remove('dragging');
+  const [file] = event.dataTransfer.files;
+  if (file) takeStudent(file);
+});
+
+// A scene file dropped on the editor replaces the text.
+editor.addEventListener('drop', async (event) => {
+  const [file] = event.dataTransfer.files;
+  if (!file) return;
+  event.preventDefault();
+  openScene(file.name, await file.text());
+});
+
+// ---- Scenes, examples and textures.
+
+function openScene(name, text) {
+  state.sceneName = name;
+  state.picked = null;
+  state.full = null;
+  state.openedAt = performance.now();
+  editor.value = text;
+  editor.scrollTop = 0;
+  $('trace').textContent = '';
+  $('trace-command').textContent = '';
+  $('trace-title').textContent = 'Click a pixel to trace it';
+  drawGutter();
+  update();
+}
+
+$('open-scene').addEventListener('change', async (event) => {
+  const [file] = event.target.files;
+  if (file) {
+    $('example').value = '';
+    openScene(file.name, await file.text());
+  }
+  event.target.value = '';
+});
+
+async function addTextures(files) {
+  let names = [];
+  for (const file of files) {
+    names = await renderer.addFile(file.name, new Uint8Array(await file.arrayBuffer()));
+  }
+  $('textures').hidden = names.length === 0;
+  $('textures').textContent = `Texture files: ${names.join(', ')}`;
+}
+
+$('add-textures').addEventListener('change', async (event) => {
+  await addTextures([...event.target.files]);
+  event.target.value = '';
+  update();
+});
+
+async function loadExamples() {
+  const index = await (await fetch('examples/index.json')).json();
+  for (const name of index.scenes) {
+    const option = document.createElement('option');
+    option.value = name;
+    option.textContent = name;
+    $('example').append(option);
+  }
+  // The examples' textures, under the names the examples give them.
+  for (const name of index.textures) {
+    const bytes = new Uint8Array(await (await fetch(`examples/textures/${name}`)).arrayBuffer());
+    await renderer.addFile(`examples/textures/${name}`, bytes);
+  }
+  return index;
+}
+
+async function openExample(name) {
+  const text = await (await fetch(`examples/${name}`)).text();
+  openScene(name, text);
+}
+
+$('example').addEventListener('change', () => {
+  const name = $('example').value;
+  if (name) openExample(name);
+});
+
+// ---- Downloads.
+
+async function download(format) {
+  const bytes = await renderer.call(format);
+  const type = format === 'png' ? 'image/png' : 'image/x-portable-pixmap';
+  const link = document.createElement('a');
+  link.href = URL.createObjectURL(new Blob([bytes], { type }));
+  link.download = state.sceneName.replace(/\.[^.]*$/, '') + `.${format}`;
+  link.click();
+  setTimeout(() => URL.revokeObjectURL(link.href), 10_000);
+}
+
+$('download-png').addEventListener('click', () => download('png'));
+$('download-ppm').addEventListener('click', () => download('ppm'));
+
+// ---- The controls' vocabulary, from the library.
+
+function fill(select, names, chosen) {
+  for (const name of names) {
+    const option = document.createElement('option');
+    option.value = option.textContent = name;
+    option.selected = name === chosen;
+    select.append(option);
+  }
+}
+
+function variantControls(variants) {
+  const input = document.createElement('input');
+  input.id = 'variant-ids';
+  input.placeholder = 'ids, comma-separated, e.g. no-shadows,max-dist=40';
+  input.style.width = '100%';
+  const box = $('variants');
+  box.before(input);
+  const checks = [];
+  for (const { id, about } of variants) {
+    const label = document.createElement('label');
+    const check = document.createElement('input');
+    check.type = 'checkbox';
+    check.value = id;
+    label.title = about;
+    label.append(check, ` ${id}`);
+    box.append(label);
+    checks.push(check);
+    check.addEventListener('change', () => {
+      const ids = checks.filter((c) => c.checked).map((c) => c.value);
+      input.value = ids.join(',');
+      input.dispatchEvent(new Event('input'));
+    });
+  }
+  input.addEventListener('input', () => {
+    $('variant-list').textContent = input.value || 'none';
+    soon();
+  });
+}
+
+async function start() {
+  const vocabulary = await renderer.call('vocabulary');
+  fill($('stage'), vocabulary.stages, 'full');
+  fill($('show'), vocabulary.shows, null);
+  fill($('kernel'), vocabulary.kernels, 'accurate');
+  variantControls(vocabulary.variants);
+  const index = await loadExamples();
+  const first = index.scenes.includes('spheres.txt') ? 'spheres.txt' : index.scenes[0];
+  $('example').value = first;
+  await openExample(first);
+}
+
+// Drops the compared image: its report and diff go.
+function forgetStudent() {
+  state.student = null;
+  state.comparison = null;
+  $('report').hidden = true;
+  $('diff').hidden = true;
+  $('forget-student').hidden = true;
+}
+
+$('forget-student').addEventListener('click', forgetStudent);
+
+// For the browser test and the speed measurement: the page's worker, to call directly.
+window.legacyRt = { renderer, state, update, openScene, takeStudent, forgetStudent };
+
+start();

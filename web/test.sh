@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# The web page's browser test: installs what it needs when missing (Debian's chromium,
+# playwright-core from npm, and through web/build.sh the wasm32 target and wasm-bindgen),
+# builds the page and the command line it is checked against, and runs
+# web/test/e2e.mjs in headless chromium. Arguments go to e2e.mjs (--screenshot FILE,
+# --bench).
+set -euo pipefail
+web="$(cd "$(dirname "$0")" && pwd)"
+cd "$web/.."
+
+if ! command -v chromium >/dev/null 2>&1; then
+  if [ "$(id -u)" = 0 ]; then
+    echo "test.sh: installing chromium (apt-get)" >&2
+    apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium >/dev/null
+  else
+    echo "test.sh: the browser test needs Debian's chromium: sudo apt-get install chromium" >&2
+    exit 1
+  fi
+fi
+(cd web && npm ci --no-audit --no-fund --loglevel=error)
+web/build.sh
+# The command line the page must agree with; `cargo test` has built this profile.
+cargo build --locked --profile test --bin legacy-rt
+if [[ " $* " == *" --bench "* ]]; then
+  cargo build --locked --release --bin legacy-rt
+fi
+node web/test/e2e.mjs "$@"

@@ -1,0 +1,288 @@
+// The web page in a real browser (Debian's headless chromium, driven by playwright-core),
+// checked against the command line: web/test.sh builds both and runs this.
+//
+//   node test/e2e.mjs [--screenshot FILE] [--bench]
+//
+// It serves web/dist/ on localhost with Python's static server and checks that
+//   1. two examples render on the canvas with the command line's bytes (same scene, size);
+//   2. an error typed into a scene shows the command line's message, its line marked;
+//   3. a clicked pixel shows the command line's trace, whose final bytes are the canvas's;
+//   4. a dropped image made with a known mistake (--variant) gets the command line's
+//      compare report, which names that variant, and a diff image over the canvas.
+// --screenshot FILE saves the page with a traced pixel (docs/web-page.png is one).
+// --bench times 640x480 renders of the course scenes in the page's worker (the render
+// call alone) against the native binary on one thread (target/release/legacy-rt, CPU
+// time of the whole run, loading included), medians of 5, alternated run by run.
+
+import { spawn, spawnSync } from 'node:child_process';
+import { mkdtempSync, readFileSync, readdirSync, writeFileSync, existsSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { dirname, join } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import assert from 'node:assert/strict';
+import { chromium } from 'playwright-core';
+
+const web = join(dirname(fileURLToPath(import.meta.url)), '..');
+const top = join(web, '..');
+const args = process.argv.slice(2);
+const screenshot = args.includes('--screenshot') ? args[args.indexOf('--screenshot') + 1] : null;
+const bench = args.includes('--bench');
+const binary = process.env.LEGACY_RT ?? join(top, 'target/debug/legacy-rt');
+
+// ---- The command line.
+
+function legacyRt(argv, { input = '', cwd = top } = {}) {
+  const run = spawnSync(binary, argv, { input, cwd, maxBuffer: 1 << 28 });
+  if (run.error) throw run.error;
+  return { status: run.status, stdout: run.stdout, stderr: run.stderr.toString() };
+}
+
+// The RGB bytes of a binary PPM as the command line writes it (`P6 W H 255\n`).
+function ppmPixels(bytes) {
+  const header = bytes.subarray(0, 40).toString('latin1').match(/^P6 (\d+) (\d+) 255\n/);
+  assert.ok(header, 'a P6 header');
+  return { width: +header[1], height: +header[2], rgb: bytes.subarray(header[0].length) };
+}
+
+// ---- The page.
+
+function serve() {
+  return new Promise((resolve, reject) => {
+    const server = spawn('python3', ['-u', '-m', 'http.server', '0', '--bind', '127.0.0.1',
+      '--directory', join(web, 'dist')], { stdio: ['ignore', 'pipe', 'ignore'] });
+    server.on('error', reject);
+    server.stdout.on('data', (chunk) => {
+      const port = chunk.toString().match(/port (\d+)/);
+      if (port) resolve({ server, url: `http://127.0.0.1:${port[1]}/` });
+    });
+  });
+}
+
+const FLAGS = ['--headless', '--no-sandbox', '--disable-gpu', '--disable-background-networking',
+  '--disable-component-update', '--no-first-run'];
+
+async function settled(page) {
+  await page.waitForFunction(() => ['done', 'error'].includes(document.body.dataset.state),
+    null, { timeout: 60_000 });
+  return page.evaluate(() => document.body.dataset.state);
+}
+
+// Edits a control the way a user does (it fires `input`) and waits for the new render.
+async function setAndRender(page, selector, value) {
+  await page.evaluate(() => { document.body.dataset.state = 'edited'; });
+  await page.fill(selector, value);
+  return settled(page);
+}
+
+async function canvasPixels(page) {
+  return page.evaluate(() => {
+    const canvas = document.getElementById('image');
+    const data = canvas.getContext('2d').getImageData(0, 0, canvas.width, canvas.height).data;
+    const rgb = [];
+    for (let i = 0; i < data.length; i += 4) rgb.push(data[i], data[i + 1], data[i + 2]);
+    return { width: canvas.width, height: canvas.height, rgb };
+  });
+}
+
+async function openExample(page, name) {
+  // Away and back, so that choosing the example shown reloads it too.
+  await page.selectOption('#example', '');
+  await page.evaluate(() => { document.body.dataset.state = 'edited'; });
+  await page.selectOption('#example', name);
+  return settled(page);
+}
+
+// 1. The canvas holds the command line's bytes.
+async function rendersAsTheCommandLine(page, name, width, height) {
+  assert.equal(await openExample(page, name), 'done', name);
+  await page.fill('#height', String(height));
+  assert.equal(await setAndRender(page, '#width', String(width)), 'done');
+  const text = readFileSync(join(top, 'examples', name));
+  const cli = legacyRt([String(width), String(height)], { input: text });
+  assert.equal(cli.status, 0, cli.stderr);
+  const expected = ppmPixels(cli.stdout);
+  const shown = await canvasPixels(page);
+  assert.deepEqual([shown.width, shown.height], [expected.width, expected.height], name);
+  const differing = shown.rgb.filter((byte, i) => byte !== expected.rgb[i]).length;
+  assert.equal(differing, 0, `${name}: ${differing} of ${shown.rgb.length} bytes differ`);
+  console.log(`ok 1 - ${name} at ${width}x${height}: the canvas is the command line's bytes`);
+}
+
+// 2. An error shows the command line's message, its line marked.
+async function showsTheError(page) {
+  assert.equal(await openExample(page, 'spheres.txt'), 'done');
+  const lines = (await page.inputValue('#scene')).split('\n');
+  const line = lines.findIndex((l) => l.includes('radius')) + 1;
+  lines[line - 1] = lines[line - 1].replace(/^\S+/, 'two');
+  const broken = lines.join('\n');
+  await page.evaluate(() => { document.body.dataset.state = 'edited'; });
+  // Typed: the line's first number replaced by a word, key by key.
+  await page.fill('#scene', lines.slice(0, line - 1).join('\n') + '\n');
+  await page.focus('#scene');
+  await page.keyboard.press('Control+End');
+  await page.keyboard.type(lines.slice(line - 1).join('\n'), { delay: 0 });
+  assert.equal(await page.inputValue('#scene'), broken);
+  assert.equal(await settled(page), 'error');
+  const cli = legacyRt([], { input: broken });
+  assert.equal(cli.status, 1);
+  const shown = await page.textContent('#error-text');
+  assert.equal(shown, cli.stderr.trimEnd());
+  assert.match(shown, new RegExp(`--> line ${line}, column 1`));
+  assert.equal(await page.textContent('#gutter .bad'), String(line));
+  assert.equal(await page.getAttribute('#error', 'data-line'), String(line));
+  console.log(`ok 2 - an error typed on line ${line} is the command line's, line ${line} marked`);
+}
+
+// 3. A clicked pixel's trace is the command line's, and its bytes are the canvas's.
+async function tracesAClickedPixel(page, name) {
+  assert.equal(await openExample(page, name), 'done');
+  const { width, height } = await page.evaluate(() => window.legacyRt.state.full);
+  const box = await page.locator('#image').boundingBox();
+  // A point on the object in the image's middle band, a third of the way across.
+  const at = { x: box.width * 0.45, y: box.height * 0.55 };
+  await page.evaluate(() => { document.body.dataset.state = 'edited'; });
+  await page.click('#image', { position: at });
+  assert.equal(await settled(page), 'done');
+  const [x, y] = (await page.getAttribute('#trace-pane', 'data-pixel')).split(',').map(Number);
+  const trace = await page.textContent('#trace');
+  const last = trace.trimEnd().split('\n').at(-1);
+  const shown = await canvasPixels(page);
+  const row = height - 1 - y;
+  const i = 3 * (row * width + x);
+  assert.equal(last, `bytes: ${shown.rgb[i]} ${shown.rgb[i + 1]} ${shown.rgb[i + 2]}`);
+  const cli = legacyRt(['trace', String(x), String(y), String(width), String(height)],
+    { input: readFileSync(join(top, 'examples', name)) });
+  assert.equal(cli.status, 0, cli.stderr);
+  assert.equal(trace, cli.stdout.toString());
+  console.log(`ok 3 - pixel (${x}, ${y}) of ${name}: the command line's trace, ending in "${last}"`);
+  // The course's format too.
+  await page.evaluate(() => { document.body.dataset.state = 'edited'; });
+  await page.check('input[name=format][value=course]');
+  await page.waitForFunction((t) => document.getElementById('trace').textContent !== t, trace);
+  const course = legacyRt(['trace', String(x), String(y), String(width), String(height),
+    '--format', 'course'], { input: readFileSync(join(top, 'examples', name)) });
+  assert.equal(await page.textContent('#trace'), course.stdout.toString());
+  await page.check('input[name=format][value=readable]');
+  await page.waitForFunction((t) => document.getElementById('trace').textContent === t, trace);
+  console.log('ok 3 - and in the course\'s format');
+}
+
+// 4. A dropped image made with a known mistake: the command line's report, which names it.
+async function namesTheMistake(page, name, variant) {
+  assert.equal(await openExample(page, name), 'done');
+  const folder = mkdtempSync(join(tmpdir(), 'legacy-rt-web-'));
+  const text = readFileSync(join(top, 'examples', name));
+  writeFileSync(join(folder, name), text);
+  const made = legacyRt(['320', '240', '--variant', variant, '-o', 'mine.ppm'],
+    { input: text, cwd: folder });
+  assert.equal(made.status, 0, made.stderr);
+  const bytes = [...readFileSync(join(folder, 'mine.ppm'))];
+  await page.evaluate(() => { document.body.dataset.state = 'edited'; });
+  const drop = await page.evaluateHandle((b) => {
+    const transfer = new DataTransfer();
+    transfer.items.add(new File([new Uint8Array(b)], 'mine.ppm'));
+    return transfer;
+  }, bytes);
+  await page.dispatchEvent('#picture', 'drop', { dataTransfer: drop });
+  assert.equal(await settled(page), 'done');
+  const report = await page.textContent('#report');
+  const cli = legacyRt(['compare', '--diagnose', name, 'mine.ppm'], { cwd: folder });
+  assert.equal(cli.status, 1, cli.stderr);
+  assert.equal(report, cli.stdout.toString());
+  assert.match(report, new RegExp(`^  --variant ${variant}: `, 'm'));
+  assert.equal(await page.getAttribute('#report', 'data-verdict'), 'differ');
+  assert.equal(await page.isVisible('#diff'), true);
+  console.log(`ok 4 - an image made with --variant ${variant} is diagnosed as it`);
+}
+
+// The page showing the gallery of quadrics with a traced pixel, for the docs.
+async function takeScreenshot(page, file) {
+  await page.evaluate(() => window.legacyRt.forgetStudent());
+  assert.equal(await openExample(page, 'quadrics_gallery.txt'), 'done');
+  await page.fill('#height', '300');
+  assert.equal(await setAndRender(page, '#width', '400'), 'done');
+  const box = await page.locator('#image').boundingBox();
+  await page.evaluate(() => { document.body.dataset.state = 'edited'; });
+  await page.click('#image', { position: { x: box.width * 0.5, y: box.height * 0.62 } });
+  assert.equal(await settled(page), 'done');
+  await page.screenshot({ path: file });
+  console.log(`screenshot: ${file}`);
+}
+
+// The page's render times against the native binary's, course scenes at 640x480.
+async function benchmark(page) {
+  const native = process.env.LEGACY_RT ?? join(top, 'target/release/legacy-rt');
+  const folder = join(top, '../shared/course-scenes');
+  const scenes = readdirSync(folder).filter((f) => f.endsWith('.txt')).sort();
+  const median = (xs) => [...xs].sort((a, b) => a - b)[xs.length >> 1];
+  const ratios = [];
+  for (const scene of scenes) {
+    const text = readFileSync(join(folder, scene), 'utf8');
+    const browser = [];
+    const cpu = [];
+    for (let run = 0; run < 5; run++) {
+      const ms = await page.evaluate(async (t) => {
+        const r = await window.legacyRt.renderer.call('render',
+          { text: t, width: 640, height: 480, choices: {} });
+        return r.ms;
+      }, text);
+      browser.push(ms);
+      const timed = spawnSync('bash', ['-c',
+        'TIMEFORMAT="%3U %3S"; { time "$0" 640 480 --threads 1 < "$1" > /dev/null; } 2>&1',
+        native, join(folder, scene)]);
+      const [user, system] = timed.stdout.toString().trim().split(' ').map(Number);
+      cpu.push((user + system) * 1000);
+    }
+    const ratio = median(browser) / median(cpu);
+    ratios.push(ratio);
+    console.log(`bench ${scene}: browser ${median(browser).toFixed(1)} ms, native ${median(cpu).toFixed(1)} ms CPU, ${ratio.toFixed(2)}x`);
+  }
+  const mean = Math.exp(ratios.reduce((s, r) => s + Math.log(r), 0) / ratios.length);
+  console.log(`bench: the browser takes ${mean.toFixed(2)}x the native time (geometric mean over ${ratios.length} scenes)`);
+  // How soon an example shows a picture once chosen (at 640 wide): the preview, or the
+  // image itself.
+  await page.fill('#height', '');
+  await page.fill('#width', '640');
+  const examples = readdirSync(join(top, 'examples')).filter((f) => f.endsWith('.txt')).sort();
+  const first = [];
+  for (const name of examples) {
+    await openExample(page, name);
+    const { firstPicture, full } = await page.evaluate(() => window.legacyRt.state);
+    first.push(firstPicture);
+    console.log(`bench ${name}: first picture after ${firstPicture.toFixed(0)} ms, the ${full.width}x${full.height} image after ${full.ms.toFixed(0)} ms of rendering`);
+  }
+  console.log(`bench: first picture of an example after at most ${Math.max(...first).toFixed(0)} ms (median ${median(first).toFixed(0)} ms)`);
+}
+
+async function main() {
+  assert.ok(existsSync(join(web, 'dist/index.html')), 'web/dist/ is built (web/build.sh)');
+  assert.ok(existsSync(binary), `${binary} is built`);
+  const { server, url } = await serve();
+  const browser = await chromium.launch({ executablePath: process.env.CHROMIUM ?? '/usr/bin/chromium', args: FLAGS });
+  try {
+    const page = await browser.newPage({ viewport: { width: 1400, height: 820 } });
+    const problems = [];
+    page.on('pageerror', (error) => problems.push(error.message));
+    await page.goto(url);
+    assert.equal(await settled(page), 'done');
+    if (bench) {
+      await benchmark(page);
+      return;
+    }
+    await rendersAsTheCommandLine(page, 'textured_planes.txt', 200, 150);
+    await rendersAsTheCommandLine(page, 'quadrics_gallery.txt', 240, 180);
+    await showsTheError(page);
+    await tracesAClickedPixel(page, 'spheres.txt');
+    await namesTheMistake(page, 'spheres.txt', 'square-falloff');
+    if (screenshot) await takeScreenshot(page, screenshot);
+    assert.deepEqual(problems, [], 'no uncaught error on the page');
+  } finally {
+    await browser.close();
+    server.kill();
+  }
+}
+
+main().catch((error) => {
+  console.error(error);
+  process.exit(1);
+});
