@@ -20,8 +20,9 @@ if ! command -v chromium >/dev/null 2>&1; then
 fi
 (cd web && npm ci --no-audit --no-fund --loglevel=error)
 web/build.sh
-# The command line the page must agree with; `cargo test` has built this profile.
-cargo build --locked --profile test --bin legacy-rt
+# The command line the page must agree with, target/debug/legacy-rt: built as
+# `cargo test` builds it (the same features), so that after `cargo test` this is no work.
+cargo test --locked --no-run
 if [[ " $* " == *" --bench "* ]]; then
   cargo build --locked --release --bin legacy-rt
 fi

@@ -15,7 +15,7 @@
 // time of the whole run, loading included), medians of 5, alternated run by run.
 
 import { spawn, spawnSync } from 'node:child_process';
-import { mkdtempSync, readFileSync, readdirSync, writeFileSync, existsSync } from 'node:fs';
+import { mkdtempSync, readFileSync, readdirSync, rmSync, writeFileSync, existsSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -28,6 +28,8 @@ const args = process.argv.slice(2);
 const screenshot = args.includes('--screenshot') ? args[args.indexOf('--screenshot') + 1] : null;
 const bench = args.includes('--bench');
 const binary = process.env.LEGACY_RT ?? join(top, 'target/debug/legacy-rt');
+// The files the test writes (images made by the command line, downloads); removed at the end.
+const scratch = mkdtempSync(join(tmpdir(), 'legacy-rt-web-'));
 
 // ---- The command line.
 
@@ -106,6 +108,21 @@ async function rendersAsTheCommandLine(page, name, width, height) {
   const differing = shown.rgb.filter((byte, i) => byte !== expected.rgb[i]).length;
   assert.equal(differing, 0, `${name}: ${differing} of ${shown.rgb.length} bytes differ`);
   console.log(`ok 1 - ${name} at ${width}x${height}: the canvas is the command line's bytes`);
+  // Downloaded as PPM, the file is the command line's; as PNG, the same pixels.
+  const save = async (button) => {
+    const [download] = await Promise.all([page.waitForEvent('download'), page.click(button)]);
+    return { name: download.suggestedFilename(), bytes: readFileSync(await download.path()) };
+  };
+  const ppm = await save('#download-ppm');
+  assert.equal(ppm.name, name.replace('.txt', '.ppm'));
+  assert.ok(ppm.bytes.equals(cli.stdout), 'the downloaded PPM is the command line\'s');
+  const png = await save('#download-png');
+  const folder = scratch;
+  writeFileSync(join(folder, 'page.png'), png.bytes);
+  writeFileSync(join(folder, 'cli.ppm'), cli.stdout);
+  const compared = legacyRt(['compare', '--allow', '0', 'cli.ppm', 'page.png'], { cwd: folder });
+  assert.equal(compared.status, 0, compared.stdout.toString() + compared.stderr);
+  console.log(`ok 1 - and downloaded: ${ppm.name} is the command line's file, ${png.name} its pixels`);
 }
 
 // 2. An error shows the command line's message, its line marked.
@@ -170,7 +187,7 @@ async function tracesAClickedPixel(page, name) {
 // 4. A dropped image made with a known mistake: the command line's report, which names it.
 async function namesTheMistake(page, name, variant) {
   assert.equal(await openExample(page, name), 'done');
-  const folder = mkdtempSync(join(tmpdir(), 'legacy-rt-web-'));
+  const folder = scratch;
   const text = readFileSync(join(top, 'examples', name));
   writeFileSync(join(folder, name), text);
   const made = legacyRt(['320', '240', '--variant', variant, '-o', 'mine.ppm'],
@@ -279,6 +296,7 @@ async function main() {
   } finally {
     await browser.close();
     server.kill();
+    rmSync(scratch, { recursive: true, force: true });
   }
 }
 
