@@ -9,10 +9,12 @@ const $ = (id) => document.getElementById(id);
 class Renderer {
   constructor() {
     this.files = new Map(); // texture files, re-sent to a new worker
+    this.workers = 0; // how many were started
     this.spawn();
   }
 
   spawn() {
+    this.workers++;
     this.worker = new Worker('worker.js', { type: 'module' });
     this.pending = new Map();
     this.next = 0;

@@ -125,6 +125,23 @@ async function rendersAsTheCommandLine(page, name, width, height) {
   console.log(`ok 1 - and downloaded: ${ppm.name} is the command line's file, ${png.name} its pixels`);
 }
 
+// An edit during a long render cancels it (the worker is ended) and renders the new text.
+async function cancelsALongRender(page) {
+  assert.equal(await openExample(page, 'quadrics_gallery.txt'), 'done');
+  const before = await page.evaluate(() => window.legacyRt.renderer.workers);
+  await page.fill('#height', '4000');
+  await page.fill('#width', '6000');
+  await page.waitForFunction(() => document.body.dataset.state === 'rendering');
+  await page.fill('#height', '90');
+  assert.equal(await setAndRender(page, '#width', '120'), 'done');
+  const after = await page.evaluate(() => window.legacyRt.renderer.workers);
+  assert.ok(after > before, 'the long render\'s worker was ended');
+  const shown = await canvasPixels(page);
+  const cli = legacyRt(['120', '90'], { input: readFileSync(join(top, 'examples/quadrics_gallery.txt')) });
+  assert.deepEqual(shown.rgb, [...ppmPixels(cli.stdout).rgb]);
+  console.log('ok 2 - an edit during a 6000x4000 render cancels it and shows the new image');
+}
+
 // 2. An error shows the command line's message, its line marked.
 async function showsTheError(page) {
   assert.equal(await openExample(page, 'spheres.txt'), 'done');
@@ -288,6 +305,7 @@ async function main() {
     }
     await rendersAsTheCommandLine(page, 'textured_planes.txt', 200, 150);
     await rendersAsTheCommandLine(page, 'quadrics_gallery.txt', 240, 180);
+    await cancelsALongRender(page);
     await showsTheError(page);
     await tracesAClickedPixel(page, 'spheres.txt');
     await namesTheMistake(page, 'spheres.txt', 'square-falloff');
