@@ -4,10 +4,13 @@
 //   node test/e2e.mjs [--screenshot FILE] [--bench]
 //
 // It serves web/dist/ on localhost with Python's static server and checks that
-//   1. two examples render on the canvas with the command line's bytes (same scene, size);
-//   2. an error typed into a scene shows the command line's message, its line marked;
-//   3. a clicked pixel shows the command line's trace, whose final bytes are the canvas's;
-//   4. a dropped image made with a known mistake (--variant) gets the command line's
+//   1. two examples render on the canvas with the command line's bytes (same scene, size),
+//      and download as its files;
+//   2. an edit during a long render cancels it;
+//   3. an error typed into a scene shows the command line's message, its line marked;
+//   4. a texture not added is the command line's error, and once added it renders;
+//   5. a clicked pixel shows the command line's trace, whose final bytes are the canvas's;
+//   6. a dropped image made with a known mistake (--variant) gets the command line's
 //      compare report, which names that variant, and a diff image over the canvas.
 // --screenshot FILE saves the page with a traced pixel (docs/web-page.png is one).
 // --bench times 640x480 renders of the course scenes in the page's worker (the render
@@ -15,7 +18,7 @@
 // time of the whole run, loading included), medians of 5, alternated run by run.
 
 import { spawn, spawnSync } from 'node:child_process';
-import { mkdtempSync, readFileSync, readdirSync, rmSync, writeFileSync, existsSync } from 'node:fs';
+import { mkdirSync, mkdtempSync, readFileSync, readdirSync, rmSync, writeFileSync, existsSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -125,7 +128,7 @@ async function rendersAsTheCommandLine(page, name, width, height) {
   console.log(`ok 1 - and downloaded: ${ppm.name} is the command line's file, ${png.name} its pixels`);
 }
 
-// An edit during a long render cancels it (the worker is ended) and renders the new text.
+// 2. An edit during a long render cancels it (the worker is ended) and renders the new text.
 async function cancelsALongRender(page) {
   assert.equal(await openExample(page, 'quadrics_gallery.txt'), 'done');
   const before = await page.evaluate(() => window.legacyRt.renderer.workers);
@@ -142,7 +145,7 @@ async function cancelsALongRender(page) {
   console.log('ok 2 - an edit during a 6000x4000 render cancels it and shows the new image');
 }
 
-// 2. An error shows the command line's message, its line marked.
+// 3. An error shows the command line's message, its line marked.
 async function showsTheError(page) {
   assert.equal(await openExample(page, 'spheres.txt'), 'done');
   const lines = (await page.inputValue('#scene')).split('\n');
@@ -164,10 +167,41 @@ async function showsTheError(page) {
   assert.match(shown, new RegExp(`--> line ${line}, column 1`));
   assert.equal(await page.textContent('#gutter .bad'), String(line));
   assert.equal(await page.getAttribute('#error', 'data-line'), String(line));
-  console.log(`ok 2 - an error typed on line ${line} is the command line's, line ${line} marked`);
+  console.log(`ok 3 - an error typed on line ${line} is the command line's, line ${line} marked`);
 }
 
-// 3. A clicked pixel's trace is the command line's, and its bytes are the canvas's.
+// 4. A texture the user has not added is the command line's missing-file error; added (a
+// browser has no folders: by its file name), the scene renders as the command line's.
+async function takesAddedTextures(page) {
+  const name = 'wood-for-the-test.ppm';
+  const example = readFileSync(join(top, 'examples/textured_planes.txt'), 'utf8');
+  const text = example.replaceAll('examples/textures/colours4x3.ppm', `textures/${name}`);
+  await page.selectOption('#example', '');
+  await page.evaluate(() => { document.body.dataset.state = 'edited'; });
+  await page.fill('#scene', text);
+  assert.equal(await settled(page), 'error');
+  const missing = legacyRt(['160', '120'], { input: text });
+  assert.equal(missing.status, 1);
+  assert.equal(await page.textContent('#error-text'), missing.stderr.trimEnd());
+  assert.match(missing.stderr, /No such file or directory/);
+  // The command line reads it from textures/ under its folder; the page by its name.
+  const texture = readFileSync(join(top, 'examples/textures/colours4x3.ppm'));
+  const folder = join(scratch, 'scene');
+  mkdirSync(join(folder, 'textures'), { recursive: true });
+  writeFileSync(join(folder, 'textures', name), texture);
+  await page.evaluate(() => { document.body.dataset.state = 'edited'; });
+  await page.setInputFiles('#add-textures', { name, mimeType: 'image/x-portable-pixmap', buffer: texture });
+  assert.equal(await settled(page), 'done');
+  assert.match(await page.textContent('#textures'), new RegExp(name));
+  await page.fill('#height', '120');
+  assert.equal(await setAndRender(page, '#width', '160'), 'done');
+  const cli = legacyRt(['160', '120'], { input: text, cwd: folder });
+  assert.equal(cli.status, 0, cli.stderr);
+  assert.deepEqual((await canvasPixels(page)).rgb, [...ppmPixels(cli.stdout).rgb]);
+  console.log('ok 4 - a texture not added is the command line\'s error; added, the scene renders as there');
+}
+
+// 5. A clicked pixel's trace is the command line's, and its bytes are the canvas's.
 async function tracesAClickedPixel(page, name) {
   assert.equal(await openExample(page, name), 'done');
   const { width, height } = await page.evaluate(() => window.legacyRt.state.full);
@@ -188,7 +222,7 @@ async function tracesAClickedPixel(page, name) {
     { input: readFileSync(join(top, 'examples', name)) });
   assert.equal(cli.status, 0, cli.stderr);
   assert.equal(trace, cli.stdout.toString());
-  console.log(`ok 3 - pixel (${x}, ${y}) of ${name}: the command line's trace, ending in "${last}"`);
+  console.log(`ok 5 - pixel (${x}, ${y}) of ${name}: the command line's trace, ending in "${last}"`);
   // The course's format too.
   await page.evaluate(() => { document.body.dataset.state = 'edited'; });
   await page.check('input[name=format][value=course]');
@@ -198,10 +232,10 @@ async function tracesAClickedPixel(page, name) {
   assert.equal(await page.textContent('#trace'), course.stdout.toString());
   await page.check('input[name=format][value=readable]');
   await page.waitForFunction((t) => document.getElementById('trace').textContent === t, trace);
-  console.log('ok 3 - and in the course\'s format');
+  console.log('ok 5 - and in the course\'s format');
 }
 
-// 4. A dropped image made with a known mistake: the command line's report, which names it.
+// 6. A dropped image made with a known mistake: the command line's report, which names it.
 async function namesTheMistake(page, name, variant) {
   assert.equal(await openExample(page, name), 'done');
   const folder = scratch;
@@ -226,7 +260,7 @@ async function namesTheMistake(page, name, variant) {
   assert.match(report, new RegExp(`^  --variant ${variant}: `, 'm'));
   assert.equal(await page.getAttribute('#report', 'data-verdict'), 'differ');
   assert.equal(await page.isVisible('#diff'), true);
-  console.log(`ok 4 - an image made with --variant ${variant} is diagnosed as it`);
+  console.log(`ok 6 - an image made with --variant ${variant} is diagnosed as it`);
 }
 
 // The page showing the gallery of quadrics with a traced pixel, for the docs.
@@ -307,6 +341,7 @@ async function main() {
     await rendersAsTheCommandLine(page, 'quadrics_gallery.txt', 240, 180);
     await cancelsALongRender(page);
     await showsTheError(page);
+    await takesAddedTextures(page);
     await tracesAClickedPixel(page, 'spheres.txt');
     await namesTheMistake(page, 'spheres.txt', 'square-falloff');
     if (screenshot) await takeScreenshot(page, screenshot);
