@@ -516,6 +516,6 @@ function forgetStudent() {
 $('forget-student').addEventListener('click', forgetStudent);
 
 // For the browser test and the speed measurement: the page's worker, to call directly.
-window.legacyRt = { renderer, state, update, openScene, takeStudent, forgetStudent };
+window.legacyRt = { renderer, state, update, openScene, takeStudent };
 
 start();

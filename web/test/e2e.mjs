@@ -263,9 +263,12 @@ async function namesTheMistake(page, name, variant) {
   console.log(`ok 6 - an image made with --variant ${variant} is diagnosed as it`);
 }
 
-// The page showing the gallery of quadrics with a traced pixel, for the docs.
-async function takeScreenshot(page, file) {
-  await page.evaluate(() => window.legacyRt.forgetStudent());
+// The page showing the gallery of quadrics with a traced pixel, for the docs: a fresh
+// page, so that nothing of the tests shows.
+async function takeScreenshot(browser, url, file) {
+  const page = await browser.newPage({ viewport: { width: 1280, height: 640 } });
+  await page.goto(url);
+  assert.equal(await settled(page), 'done');
   assert.equal(await openExample(page, 'quadrics_gallery.txt'), 'done');
   await page.fill('#height', '300');
   assert.equal(await setAndRender(page, '#width', '400'), 'done');
@@ -274,6 +277,7 @@ async function takeScreenshot(page, file) {
   await page.click('#image', { position: { x: box.width * 0.5, y: box.height * 0.62 } });
   assert.equal(await settled(page), 'done');
   await page.screenshot({ path: file });
+  await page.close();
   console.log(`screenshot: ${file}`);
 }
 
@@ -344,7 +348,7 @@ async function main() {
     await takesAddedTextures(page);
     await tracesAClickedPixel(page, 'spheres.txt');
     await namesTheMistake(page, 'spheres.txt', 'square-falloff');
-    if (screenshot) await takeScreenshot(page, screenshot);
+    if (screenshot) await takeScreenshot(browser, url, screenshot);
     assert.deepEqual(problems, [], 'no uncaught error on the page');
   } finally {
     await browser.close();
