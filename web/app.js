@@ -31,19 +31,23 @@ class Renderer {
       }
       this.pending.clear();
     };
-    for (const [name, bytes] of this.files) this.call('addFile', { name, bytes: bytes.slice() });
+    // The texture files again; cancelling this worker too only drops them with it.
+    for (const [name, bytes] of this.files) {
+      this.call('addFile', { name, bytes: bytes.slice() }).catch(() => {});
+    }
   }
 
   call(op, args = {}) {
     const id = this.next++;
     return new Promise((resolve, reject) => {
-      this.pending.set(id, { resolve, reject });
+      this.pending.set(id, { op, resolve, reject });
       this.worker.postMessage({ id, op, ...args });
     });
   }
 
+  // Whether the worker is computing something that an edit makes stale.
   busy() {
-    return this.pending.size > 0;
+    return [...this.pending.values()].some((request) => request.op !== 'addFile');
   }
 
   // Ends the worker and whatever it computes; its requests fail as cancelled.
@@ -193,6 +197,8 @@ async function update() {
     const { lights, objects } = image.scene;
     $('status').textContent =
       `${image.width}x${image.height}, ${objects} objects, ${lights} lights: ${image.ms.toFixed(0)} ms`;
+    const picked = state.picked;
+    if (picked && (picked.x >= image.width || picked.row >= image.height)) forgetPixel();
     if (state.picked) await tracePixel(state.picked.x, state.picked.row);
     else drawMark();
     if (state.student) await compareStudent();
@@ -234,6 +240,15 @@ for (const id of ['width', 'height', 'stage', 'show', 'kernel', 'max-dist']) {
 }
 
 // ---- The trace of a clicked pixel, and the mark on it.
+
+function forgetPixel() {
+  state.picked = null;
+  $('trace').textContent = '';
+  $('trace-command').textContent = '';
+  $('trace-title').textContent = 'Click a pixel to trace it';
+  delete $('trace-pane').dataset.pixel;
+  delete $('trace-pane').dataset.bytes;
+}
 
 function drawMark() {
   const mark = $('mark');
@@ -375,14 +390,11 @@ editor.addEventListener('drop', async (event) => {
 
 function openScene(name, text) {
   state.sceneName = name;
-  state.picked = null;
+  forgetPixel();
   state.full = null;
   state.openedAt = performance.now();
   editor.value = text;
   editor.scrollTop = 0;
-  $('trace').textContent = '';
-  $('trace-command').textContent = '';
-  $('trace-title').textContent = 'Click a pixel to trace it';
   drawGutter();
   update();
 }
