@@ -22,15 +22,14 @@ class Renderer {
       const request = this.pending.get(data.id);
       this.pending.delete(data.id);
       if (!request) return;
-      if ('error' in data) request.reject(data.error);
-      else request.resolve(data.result);
-    };
-    this.worker.onerror = (event) => {
-      for (const request of this.pending.values()) {
-        request.reject({ message: `the renderer stopped: ${event.message}` });
+      if ('error' in data) {
+        if (data.error.fatal) this.restart(`the renderer stopped: ${data.error.message}`);
+        request.reject(data.error);
+      } else {
+        request.resolve(data.result);
       }
-      this.pending.clear();
     };
+    this.worker.onerror = (event) => this.restart(`the renderer stopped: ${event.message}`);
     // The texture files again; cancelling this worker too only drops them with it.
     for (const [name, bytes] of this.files) {
       this.call('addFile', { name, bytes: bytes.slice() }).catch(() => {});
@@ -54,6 +53,13 @@ class Renderer {
   cancel() {
     this.worker.terminate();
     for (const request of this.pending.values()) request.reject({ cancelled: true });
+    this.spawn();
+  }
+
+  // A new worker after the old one failed; its requests fail with `message`.
+  restart(message) {
+    this.worker.terminate();
+    for (const request of this.pending.values()) request.reject({ message });
     this.spawn();
   }
 

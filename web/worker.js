@@ -87,7 +87,10 @@ self.onmessage = async (event) => {
       .filter((buffer) => buffer instanceof ArrayBuffer);
     self.postMessage({ id, result }, transfer);
   } catch (error) {
-    const plain = error instanceof Error ? { message: error.message } : error;
+    // A trap (out of memory, a bug) leaves the WebAssembly instance unusable: the page
+    // starts another worker.
+    const fatal = error instanceof WebAssembly.RuntimeError;
+    const plain = error instanceof Error ? { message: error.message, fatal } : error;
     self.postMessage({ id, error: plain });
   }
 };

@@ -14,8 +14,10 @@ use legacy_rt::{Image, Options, Scene, SceneError};
 use serde::{Deserialize, Serialize};
 use wasm_bindgen::prelude::*;
 
-/// The largest image the page renders, in pixels: the command line's limit (16384²).
-const MAX_PIXELS: u64 = 1 << 28;
+/// The largest image the page renders, in pixels (4096²): a page's WebAssembly memory
+/// holds the image twice (RGB and the canvas's RGBA), 112 MB at this size; the command
+/// line renders up to 2^28.
+const MAX_PIXELS: u64 = 1 << 24;
 
 /// The choices of the page's controls, as JSON: the command line's option values, by
 /// its names (`{"stage": "diffuse", "variants": "no-shadows,upside-down"}`).
@@ -207,7 +209,8 @@ impl Session {
         }
         if width.saturating_mul(height) > MAX_PIXELS {
             return Err(thrown(format!(
-                "{width}x{height} is more than the {MAX_PIXELS} pixels this program renders"
+                "{width}x{height} is more than the {MAX_PIXELS} pixels this page renders \
+                 (4096x4096; the command line renders up to 16384x16384)"
             )));
         }
         let choices = choices(choices_json).map_err(thrown)?;
