@@ -8,7 +8,9 @@ pub mod trace;
 
 use clap::{Parser, Subcommand};
 use legacy_rt::image_output::file::OutputFile;
-use legacy_rt::render::{Choices, DEFAULT_MAX_DIST, MAX_THREADS, Show, Stage, Variant};
+use legacy_rt::render::{
+    Choices, DEFAULT_MAX_DIST, MAX_THREADS, Show, Stage, Variant, by_name, size_problem,
+};
 use legacy_rt::shapes::kernel::KernelChoice;
 use std::io::Write;
 use std::path::PathBuf;
@@ -201,17 +203,12 @@ fn threads(text: &str) -> Result<usize, String> {
 
 /// Parses a `--kernel` name.
 fn kernel(name: &str) -> Result<KernelChoice, String> {
-    KernelChoice::from_name(name).ok_or_else(|| {
-        let names: Vec<_> = KernelChoice::ALL.iter().map(|k| k.name()).collect();
-        format!("expected one of: {}", names.join(", "))
-    })
+    by_name(&KernelChoice::ALL, name, KernelChoice::name)
 }
 
 /// Parses a `--stage` name.
 fn stage(name: &str) -> Result<Stage, String> {
-    let names: Vec<_> = Stage::ALL.iter().map(|s| s.name()).collect();
-    let found = Stage::ALL.into_iter().find(|s| s.name() == name);
-    found.ok_or_else(|| format!("expected one of: {}", names.join(", ")))
+    by_name(&Stage::ALL, name, Stage::name)
 }
 
 /// Parses a `--variant` id.
@@ -221,9 +218,7 @@ fn variant(id: &str) -> Result<Variant, String> {
 
 /// Parses a `--show` name.
 fn show(name: &str) -> Result<Show, String> {
-    let names: Vec<_> = Show::ALL.iter().map(|s| s.name()).collect();
-    let found = Show::ALL.into_iter().find(|s| s.name() == name);
-    found.ok_or_else(|| format!("expected one of: {}", names.join(", ")))
+    by_name(&Show::ALL, name, Show::name)
 }
 
 /// `-o FILE` checked before anything is read or rendered, so that a bad name costs
@@ -273,14 +268,7 @@ pub fn size(
         (Some(w), Some(h)) => (w, h),
         (Some(w), None) => (w, scene.height_for(w)),
     };
-    let problem = if width < 2 || height < 2 {
-        format!(
-            "the image must be at least 2x2 pixels (the projection divides by W-1 and H-1), \
-             not {width}x{height}"
-        )
-    } else if width.saturating_mul(height) > MAX_PIXELS {
-        format!("{width}x{height} is more than the {MAX_PIXELS} pixels this program renders")
-    } else {
+    let Some(problem) = size_problem(width, height, MAX_PIXELS) else {
         return Ok((width, height));
     };
     if given.1.is_some() {

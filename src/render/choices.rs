@@ -32,6 +32,39 @@ impl Default for Choices {
     }
 }
 
+/// The item of `all` whose `name` is `name`, or "expected one of: …" listing the names:
+/// how `--stage`, `--show` and `--kernel` (and the web page's controls) read a name.
+pub fn by_name<T: Copy>(
+    all: &[T],
+    name: &str,
+    of: impl Fn(T) -> &'static str,
+) -> Result<T, String> {
+    match all.iter().find(|&&item| of(item) == name) {
+        Some(&item) => Ok(item),
+        None => {
+            let names: Vec<_> = all.iter().map(|&item| of(item)).collect();
+            Err(format!("expected one of: {}", names.join(", ")))
+        }
+    }
+}
+
+/// Why a `width` x `height` image cannot be rendered, if it cannot: smaller than 2x2, or
+/// more than `max_pixels`.
+pub fn size_problem(width: u64, height: u64, max_pixels: u64) -> Option<String> {
+    if width < 2 || height < 2 {
+        Some(format!(
+            "the image must be at least 2x2 pixels (the projection divides by W-1 and H-1), \
+             not {width}x{height}"
+        ))
+    } else if width.saturating_mul(height) > max_pixels {
+        Some(format!(
+            "{width}x{height} is more than the {max_pixels} pixels this program renders"
+        ))
+    } else {
+        None
+    }
+}
+
 impl Choices {
     /// Fails on a choice no render can take, before any scene is read.
     pub fn check(&self) -> Result<(), String> {

@@ -14,7 +14,7 @@ pub mod trace;
 pub mod variant;
 
 pub use bvh::{Boxes, Bvh};
-pub use choices::Choices;
+pub use choices::{Choices, by_name, size_problem};
 pub use shading::PatternNote;
 pub(crate) use shading::{Screen, material_and_pattern};
 pub use trace::{Event, LightStep, Recorder, Show, Stage, Trace, trace};

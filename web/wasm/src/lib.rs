@@ -7,7 +7,7 @@
 //! the page, and cancelling one is ending the worker.
 
 use legacy_rt::compare::{self, Settings, Tolerance, Verdict};
-use legacy_rt::render::{Choices, Show, Stage, Variant};
+use legacy_rt::render::{Choices, Show, Stage, Variant, by_name, size_problem};
 use legacy_rt::scene::{Files, InMemory, NOT_FOUND};
 use legacy_rt::shapes::kernel::KernelChoice;
 use legacy_rt::{Image, Options, Scene, SceneError};
@@ -31,17 +31,6 @@ struct ChoicesJson {
     variants: Option<String>,
 }
 
-/// `what` named `name`, or the command line's "expected one of" message.
-fn named<T: Copy>(all: &[T], name: &str, of: impl Fn(T) -> &'static str) -> Result<T, String> {
-    match all.iter().find(|&&item| of(item) == name) {
-        Some(&item) => Ok(item),
-        None => {
-            let names: Vec<_> = all.iter().map(|&item| of(item)).collect();
-            Err(format!("expected one of: {}", names.join(", ")))
-        }
-    }
-}
-
 /// The page's choices, checked as the command line checks its options.
 fn choices(json: &str) -> Result<Choices, String> {
     let given: ChoicesJson = match json.trim() {
@@ -53,16 +42,16 @@ fn choices(json: &str) -> Result<Choices, String> {
         choices.max_dist = max_dist;
     }
     if let Some(kernel) = given.kernel.as_deref() {
-        choices.kernel = named(&KernelChoice::ALL, kernel, KernelChoice::name)
+        choices.kernel = by_name(&KernelChoice::ALL, kernel, KernelChoice::name)
             .map_err(|error| format!("--kernel: {error}"))?;
     }
     if let Some(stage) = given.stage.as_deref() {
-        choices.stage =
-            named(&Stage::ALL, stage, Stage::name).map_err(|error| format!("--stage: {error}"))?;
+        choices.stage = by_name(&Stage::ALL, stage, Stage::name)
+            .map_err(|error| format!("--stage: {error}"))?;
     }
     if let Some(show) = given.show.as_deref().filter(|show| !show.is_empty()) {
         let show =
-            named(&Show::ALL, show, Show::name).map_err(|error| format!("--show: {error}"))?;
+            by_name(&Show::ALL, show, Show::name).map_err(|error| format!("--show: {error}"))?;
         choices.show = Some(show);
     }
     for id in given.variants.iter().flat_map(|ids| ids.split(',')) {
@@ -192,35 +181,36 @@ impl Session {
             .ok_or_else(|| thrown("no scene is loaded"))
     }
 
-    /// The options of a `width` x `height` render with the page's choices (JSON); a
-    /// height of 0 means the one the world window gives for that width.
-    fn options(&self, width: u32, height: u32, choices_json: &str) -> Result<Options, JsError> {
+    /// The options of a `width` x `height` render with the page's choices (JSON), and
+    /// those choices; a height of 0 means the one the world window gives for that width.
+    fn options(
+        &self,
+        width: u32,
+        height: u32,
+        choices_json: &str,
+    ) -> Result<(Options, Choices), JsError> {
         let scene = self.scene()?;
         let (width, height) = (u64::from(width), u64::from(height));
         let height = match height {
             0 => scene.height_for(width),
             h => h,
         };
-        if width < 2 || height < 2 {
-            return Err(thrown(format!(
-                "the image must be at least 2x2 pixels (the projection divides by W-1 and \
-                 H-1), not {width}x{height}"
-            )));
-        }
-        if width.saturating_mul(height) > MAX_PIXELS {
-            return Err(thrown(format!(
-                "{width}x{height} is more than the {MAX_PIXELS} pixels this page renders \
-                 (4096x4096; the command line renders up to 16384x16384)"
-            )));
+        if let Some(problem) = size_problem(width, height, MAX_PIXELS) {
+            let limits = match width.saturating_mul(height) > MAX_PIXELS {
+                true => "; the page renders up to 4096x4096, the command line up to 16384x16384",
+                false => "",
+            };
+            return Err(thrown(format!("{problem}{limits}")));
         }
         let choices = choices(choices_json).map_err(thrown)?;
-        (choices.options(width as usize, height as usize)).map_err(thrown)
+        let options = (choices.options(width as usize, height as usize)).map_err(thrown)?;
+        Ok((options, choices))
     }
 
     /// Renders the loaded scene; the image, rows top to bottom, as RGBA for a canvas's
     /// `ImageData` (alpha 255). It is kept for [`Session::png`] and [`Session::ppm`].
     pub fn render(&mut self, width: u32, height: u32, choices: &str) -> Result<Vec<u8>, JsError> {
-        let options = self.options(width, height, choices)?;
+        let (options, _) = self.options(width, height, choices)?;
         let (image, _) = legacy_rt::render(self.scene()?, &options, |_| {});
         let rgba = rgba(&image);
         self.image = Some(image);
@@ -261,7 +251,7 @@ impl Session {
         format: &str,
         scene_name: &str,
     ) -> Result<String, JsError> {
-        let options = self.options(width, height, choices_json)?;
+        let (options, chosen) = self.options(width, height, choices_json)?;
         let (w, h) = (options.width, options.height);
         let (x, row) = (x as usize, row as usize);
         if x >= w || row >= h {
@@ -278,7 +268,6 @@ impl Session {
             "course" => trace.course(scene),
             _ => trace.readable(scene),
         };
-        let chosen = choices(choices_json).map_err(thrown)?;
         let command = compare::text::trace_command(&chosen, &options, scene_name, x, y);
         let traced = serde_json::json!({
             "x": x,
@@ -307,8 +296,8 @@ impl Session {
     ) -> Result<Comparison, JsError> {
         let scene = self.scene()?;
         let student = compare::read::image_named(bytes, name, "student's image").map_err(thrown)?;
-        let chosen = choices(choices_json).map_err(thrown)?;
-        let options = self.options(student.width as u32, student.height as u32, choices_json)?;
+        let (width, height) = (student.width as u32, student.height as u32);
+        let (options, chosen) = self.options(width, height, choices_json)?;
         let reference = compare::reference(scene, &options, &student);
         let settings = Settings {
             tolerance: Tolerance {
