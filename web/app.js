@@ -164,8 +164,9 @@ function draw(canvas, rgba, width, height) {
   canvas.getContext('2d').putImageData(new ImageData(new Uint8ClampedArray(rgba.buffer), width, height), 0, 0);
 }
 
+// The canvas shown at the full image's width, so that a preview is scaled up to it.
 function displayWidth(width) {
-  for (const id of ['image']) $(id).style.width = `${width}px`;
+  $('image').style.width = `${width}px`;
 }
 
 async function update() {

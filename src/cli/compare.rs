@@ -187,13 +187,13 @@ fn run_inner(args: &CompareArgs) -> Result<bool, Failure> {
     let with_scene = scene.as_ref().zip(options.as_ref());
     let mut report = compare::report(&reference, &student, with_scene, &settings)
         .map_err(|error| Failure(format!("error: {error}"), 2))?;
-    if let Some(options) = &options {
+    // The choices that made the reference, when it was rendered from the scene.
+    let choices = options.is_some().then(|| args.how.choices());
+    if let Some((options, choices)) = options.as_ref().zip(choices.as_ref()) {
         for worst in &mut report.worst {
             let (x, y) = (worst.x, worst.y);
-            let choices = args.how.choices();
-            worst.trace = Some(compare::text::trace_command(
-                &choices, options, &shown, x, y,
-            ));
+            let command = compare::text::trace_command(choices, options, &shown, x, y);
+            worst.trace = Some(command);
         }
     }
     if let Some(diff) = diff {
@@ -201,7 +201,6 @@ fn run_inner(args: &CompareArgs) -> Result<bool, Failure> {
             .map_err(|error| Failure(format!("error: {error}"), 2))?;
         write_image(&image, diff.format, Some(diff))?;
     }
-    let choices = options.is_some().then(|| args.how.choices());
     let out = match args.json {
         true => {
             let json = serde_json::to_string_pretty(&report)
