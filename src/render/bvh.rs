@@ -109,12 +109,16 @@ impl Boxes {
         Boxes(boxes.collect())
     }
 
-    /// Whether a hit at distance `t` on object `index` counts: the ray (`base`, with
-    /// `inverse` = 1 / its direction) has entered the object's box by `t`, or the object
-    /// has no box.
+    /// Object `index`'s padded box (min, max), if it has one.
+    pub fn get(&self, index: usize) -> Option<(DVec3, DVec3)> {
+        self.0[index].map(|b| (b.min, b.max))
+    }
+
+    /// Whether a hit at distance `t` on object `index` counts: `ray` has entered the
+    /// object's box by `t`, or the object has no box.
     #[inline]
-    pub fn admits(&self, index: usize, base: DVec3, inverse: DVec3, t: f64) -> bool {
-        self.0[index].is_none_or(|b| b.entered(base, inverse, t))
+    pub fn admits(&self, index: usize, ray: &Ray, t: f64) -> bool {
+        self.0[index].is_none_or(|b| b.entered(ray.base, ray.dir.recip(), t))
     }
 }
 

@@ -9,7 +9,9 @@
 
 mod bvh;
 mod choices;
+mod lists;
 mod shading;
+mod tiles;
 pub mod trace;
 pub mod variant;
 
@@ -25,6 +27,7 @@ use crate::shapes::kernel::{Accurate, Kernel, KernelChoice, StableRoots, Textboo
 use crate::shapes::{Ray, Shape, Surface, unit};
 use glam::{DVec2, DVec3};
 use std::marker::PhantomData;
+use tiles::Tiles;
 use variant::{AsSpecified, Deviating, Divisor, FirstRoot, Rules};
 
 /// The default MAX_DIST of spec §4.2.
@@ -227,6 +230,17 @@ fn render_with<K: Kernel, V: Rules>(
 ) -> (Image, Stats) {
     let camera = Camera::new(scene, options);
     let tracer = Tracer::<K, V>::new(scene, options);
+    let tiles = (options.accelerate)
+        .then(|| {
+            Tiles::new(
+                scene,
+                &tracer.boxes,
+                camera.viewpoint,
+                &camera.xs,
+                &camera.ys,
+            )
+        })
+        .flatten();
     let (width, height) = (options.width, options.height);
     let mut pixels = vec![[0u8; 3]; width * height];
     // One output row: pixel y = height - 1 - row (spec §4.1, top row first).
@@ -241,7 +255,10 @@ fn render_with<K: Kernel, V: Rules>(
         for (x, pixel) in out.iter_mut().enumerate() {
             stats.camera += 1;
             let colour = match camera.ray(x, y) {
-                Some(ray) => tracer.pixel(ray, options.show, &mut stats, &mut ()),
+                Some(ray) => {
+                    let first = tiles.as_ref().and_then(|tiles| tiles.at(x, y));
+                    tracer.pixel(ray, first, options.show, &mut stats, &mut ())
+                }
                 None => DVec3::ZERO,
             };
             *pixel = tracer.bytes(colour);
@@ -347,7 +364,7 @@ pub fn first_hits(scene: &Scene, options: &Options) -> Vec<Option<usize>> {
             let scene = options.deviations.scene(scene);
             let tracer = Tracer::<K, V>::new(&scene, options);
             let first = |ray: Option<Ray>, _: &mut Stats| {
-                let (index, _) = tracer.closest_hit(&ray?, None, &mut ())?;
+                let (index, _) = tracer.closest_hit(&ray?, None, None, &mut ())?;
                 Some(index)
             };
             map_pixels(&scene, options, first)
@@ -420,7 +437,7 @@ pub fn path_bytes(scene: &Scene, options: &Options) -> Vec<PathBytes> {
                 };
                 match ray {
                     Some(ray) => {
-                        tracer.trace(ray, stats, &mut path);
+                        tracer.trace(ray, None, stats, &mut path);
                         path.settle();
                     }
                     None => path.entries.push((0.0, DVec3::ZERO)),
@@ -446,7 +463,7 @@ pub fn ray_trace(scene: &Scene, options: &Options, ray: Ray) -> DVec3 {
             let Job(scene, options, ray) = self;
             let scene = options.deviations.scene(scene);
             let tracer = Tracer::<K, V>::new(&scene, options);
-            tracer.pixel(ray, options.show, &mut Stats::default(), &mut ())
+            tracer.pixel(ray, None, options.show, &mut Stats::default(), &mut ())
         }
     }
     dispatch(options, Job(scene, options, ray))
@@ -561,18 +578,34 @@ impl<'a, K: Kernel, V: Rules> Tracer<'a, K, V> {
     }
 
     /// The closest object with t > 0 along `ray`, skipping `last_hit`; ties go to the
-    /// earlier object (spec §4.6).
+    /// earlier object (spec §4.6). `candidates`, when given, holds in file order every
+    /// object whose hit could count (a camera ray's tile list).
     #[inline(always)]
     fn closest_hit<R: Recorder>(
         &self,
         ray: &Ray,
         last_hit: Option<usize>,
+        candidates: Option<&[u32]>,
         rec: &mut R,
     ) -> Option<(usize, f64)> {
         let (last_hit, least) = self.leaving(last_hit);
-        let inverse = ray.dir.recip();
-        let counts =
-            |index: usize, t: f64| t > least && self.boxes.admits(index, ray.base, inverse, t);
+        let counts = |index: usize, t: f64| t > least && self.boxes.admits(index, ray, t);
+        if let Some(candidates) = candidates
+            && !R::EVERY_TEST
+        {
+            let mut best: Option<(usize, f64)> = None;
+            for &index in candidates {
+                let index = index as usize;
+                if Some(index) != last_hit
+                    && let Some(t) = self.hit(&self.scene.objects[index].shape, ray)
+                    && best.is_none_or(|(_, best_t)| t < best_t)
+                    && counts(index, t)
+                {
+                    best = Some((index, t));
+                }
+            }
+            return best;
+        }
         if let Some(bvh) = &self.bvh
             && !R::EVERY_TEST
         {
@@ -607,10 +640,8 @@ impl<'a, K: Kernel, V: Rules> Tracer<'a, K, V> {
             (Some(skip), least) => (skip, least),
             (None, least) => (usize::MAX, least),
         };
-        let inverse = ray.dir.recip();
-        let blocks = |index: usize, t: f64| {
-            t > least && t < dist && self.boxes.admits(index, ray.base, inverse, t)
-        };
+        let blocks =
+            |index: usize, t: f64| t > least && t < dist && self.boxes.admits(index, ray, t);
         if let Some(bvh) = &self.bvh
             && !R::EVERY_TEST
         {
@@ -641,7 +672,14 @@ impl<'a, K: Kernel, V: Rules> Tracer<'a, K, V> {
     /// ray_trace of spec §4.2, with the mirror recursion unrolled into a loop: the colour
     /// is Σ (S₁ ⊙ … ⊙ Sₖ) ⊙ Iₖ₊₁ / total_distₖ₊₁ over the bounces. The stage (spec §7.2)
     /// leaves out the lights, the shadow rays or the reflection.
-    fn trace<R: Recorder>(&self, mut ray: Ray, stats: &mut Stats, rec: &mut R) -> DVec3 {
+    /// `first`, when given, holds every object the camera ray may hit (its tile's list).
+    fn trace<R: Recorder>(
+        &self,
+        mut ray: Ray,
+        first: Option<&[u32]>,
+        stats: &mut Stats,
+        rec: &mut R,
+    ) -> DVec3 {
         let mut colour = DVec3::ZERO;
         let mut weight = DVec3::ONE;
         let mut total_dist = 0.0;
@@ -660,7 +698,8 @@ impl<'a, K: Kernel, V: Rules> Tracer<'a, K, V> {
                 ray,
                 total_dist,
             });
-            let hit = self.closest_hit(&ray, last_hit, rec);
+            let candidates = if depth == 0 { first } else { None };
+            let hit = self.closest_hit(&ray, last_hit, candidates, rec);
             rec.record(|| Event::Closest { hit });
             let Some((index, t)) = hit else {
                 break;
@@ -782,13 +821,13 @@ impl<'a, K: Kernel, V: Rules> Tracer<'a, K, V> {
 
     /// The diagnostic image of `show` at the first hit along `ray` (spec §7.2's companions:
     /// normals, object ids, distance).
-    fn show<R: Recorder>(&self, ray: Ray, show: Show, rec: &mut R) -> DVec3 {
+    fn show<R: Recorder>(&self, ray: Ray, show: Show, first: Option<&[u32]>, rec: &mut R) -> DVec3 {
         rec.record(|| Event::Segment {
             depth: 0,
             ray,
             total_dist: 0.0,
         });
-        let hit = self.closest_hit(&ray, None, rec);
+        let hit = self.closest_hit(&ray, None, first, rec);
         rec.record(|| Event::Closest { hit });
         let Some((index, t)) = hit else {
             return DVec3::ZERO;
@@ -811,13 +850,14 @@ impl<'a, K: Kernel, V: Rules> Tracer<'a, K, V> {
     fn pixel<R: Recorder>(
         &self,
         ray: Ray,
+        first: Option<&[u32]>,
         show: Option<Show>,
         stats: &mut Stats,
         rec: &mut R,
     ) -> DVec3 {
         match show {
-            None => self.trace(ray, stats, rec),
-            Some(show) => self.show(ray, show, rec),
+            None => self.trace(ray, first, stats, rec),
+            Some(show) => self.show(ray, show, first, rec),
         }
     }
 }

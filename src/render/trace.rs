@@ -279,7 +279,9 @@ pub fn trace(scene: &Scene, options: &Options, x: usize, y: usize) -> Option<Tra
             let tracer = Tracer::<K, V>::new(&scene, options);
             let mut events = Vec::new();
             let colour = match camera.ray(x, y) {
-                Some(ray) => tracer.pixel(ray, options.show, &mut Stats::default(), &mut events),
+                Some(ray) => {
+                    tracer.pixel(ray, None, options.show, &mut Stats::default(), &mut events)
+                }
                 None => DVec3::ZERO,
             };
             Trace {

@@ -1,0 +1,77 @@
+//! Short lists of objects, one per cell of a grid (a tile of pixels, a cell of a light's
+//! directions), each in file order. A cell that would hold more than [`MOST_OBJECTS`]
+//! keeps no list: its rays take the usual path (the hierarchy, or every object).
+
+/// The longest list kept. Measured with callgrind (320x240 and 640x480, the course
+/// scenes spec1, a04, d04, the gallery and the Tachyon twins): 16 gives a04 2-4 % fewer
+/// instructions than 8, and no scene more than 1 % more; 32 gives nothing over 16.
+pub(crate) const MOST_OBJECTS: usize = 16;
+
+/// The finished lists.
+#[derive(Debug, Clone)]
+pub(crate) struct Lists {
+    /// Cell k's objects are `objects[starts[k]..starts[k + 1]]`, unless `kept[k]` is
+    /// false.
+    starts: Vec<u32>,
+    kept: Vec<bool>,
+    objects: Vec<u32>,
+}
+
+/// The lists while objects are added.
+pub(crate) struct Builder {
+    lists: Vec<Vec<u32>>,
+    kept: Vec<bool>,
+}
+
+impl Builder {
+    /// `cells` empty lists.
+    pub(crate) fn new(cells: usize) -> Builder {
+        Builder {
+            lists: vec![Vec::new(); cells],
+            kept: vec![true; cells],
+        }
+    }
+
+    /// Adds object `index` to `cell`'s list. Objects are added in file order.
+    pub(crate) fn add(&mut self, cell: usize, index: usize) {
+        if !self.kept[cell] {
+            return;
+        }
+        if self.lists[cell].len() == MOST_OBJECTS {
+            self.kept[cell] = false;
+            self.lists[cell] = Vec::new();
+        } else {
+            self.lists[cell].push(index as u32);
+        }
+    }
+
+    /// Adds object `index` to every cell.
+    pub(crate) fn add_everywhere(&mut self, index: usize) {
+        (0..self.kept.len()).for_each(|cell| self.add(cell, index));
+    }
+
+    /// The lists, packed.
+    pub(crate) fn finish(self) -> Lists {
+        let mut starts = Vec::with_capacity(self.lists.len() + 1);
+        let mut objects = Vec::new();
+        starts.push(0);
+        for list in &self.lists {
+            objects.extend_from_slice(list);
+            starts.push(objects.len() as u32);
+        }
+        Lists {
+            starts,
+            kept: self.kept,
+            objects,
+        }
+    }
+}
+
+impl Lists {
+    /// Cell `cell`'s objects in file order, or `None` when it keeps no list.
+    #[inline]
+    pub(crate) fn get(&self, cell: usize) -> Option<&[u32]> {
+        let range = self.starts[cell] as usize..self.starts[cell + 1] as usize;
+        self.kept[cell].then(|| &self.objects[range])
+    }
+}
