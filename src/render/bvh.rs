@@ -21,16 +21,18 @@
 
 use crate::scene::Scene;
 use crate::shapes::Ray;
+use crate::shapes::Shape;
 use glam::DVec3;
 
-/// Scenes with fewer bounded objects than this are scanned linearly. From two on, the
-/// root box alone saves more than it costs on the course's scenes: every ray that misses
-/// it skips every bounded object. Measured with callgrind at 160x120 against the former
-/// threshold of 8, over the 10 course scenes and the 24 examples: 1.10-1.42x fewer
-/// instructions on a03, d03, d04 and spec1 and up to 2.40x on the examples, the same on
-/// the others, except examples/spheres.txt (0.92x: its eye sits inside a sphere, whose box
-/// every ray enters) and textured_planes (0.996x).
-pub const MIN_OBJECTS: usize = 2;
+/// The hierarchy is built when testing every bounded object costs at least this much
+/// per ray, in ns of the tests of rays that miss ([`miss_ns`]): walking even a small
+/// tree (its stack, the root's box) costs about three sphere tests. Measured with
+/// callgrind at 320x240 once camera rays took their tiles' lists: 2 and 3 spheres
+/// (spec1, d04: 17.8 and 26.7 ns) scan in 1.14x and 1.09x fewer instructions than they
+/// walk, a sphere and a cylinder (examples/mirrors.txt, 31.0 ns) walk in 1.16x fewer.
+/// Of the scenes measured, only 2 and 4 rectangles alone (examples/finite_planes.txt,
+/// d03) would scan 1.02x and 1.07x faster than they walk.
+pub const HIERARCHY_FROM_NS: f64 = 30.0;
 
 /// What building the tree costs per object and level, in ray-shape tests: callgrind
 /// counts about 790 instructions per object per level of the build (100,000 spheres) and
@@ -95,30 +97,41 @@ struct Node {
     axis: u32,
 }
 
-/// Every object's padded box in scene order, `None` for an object without one.
+/// Every object's padded box in scene order, `None` for an object without one, and
+/// what testing every bounded object costs.
 #[derive(Debug, Clone)]
-pub struct Boxes(Vec<Option<Aabb>>);
+pub struct Boxes {
+    boxes: Vec<Option<Aabb>>,
+    /// The sum of [`miss_ns`] over the objects with a box.
+    scan_ns: f64,
+}
 
 impl Boxes {
     /// The boxes of `scene`'s objects.
     pub fn new(scene: &Scene) -> Boxes {
-        let boxes = scene.objects.iter().map(|object| {
-            let (min, max) = object.shape.bounds()?;
-            Some(pad(Aabb { min, max }))
-        });
-        Boxes(boxes.collect())
+        let boxes: Vec<Option<Aabb>> = (scene.objects.iter())
+            .map(|object| {
+                let (min, max) = object.shape.bounds()?;
+                Some(pad(Aabb { min, max }))
+            })
+            .collect();
+        let scan_ns = (scene.objects.iter().zip(&boxes))
+            .filter(|(_, b)| b.is_some())
+            .map(|(object, _)| miss_ns(&object.shape))
+            .sum();
+        Boxes { boxes, scan_ns }
     }
 
     /// Object `index`'s padded box (min, max), if it has one.
     pub fn get(&self, index: usize) -> Option<(DVec3, DVec3)> {
-        self.0[index].map(|b| (b.min, b.max))
+        self.boxes[index].map(|b| (b.min, b.max))
     }
 
     /// Whether a hit at distance `t` on object `index` counts: `ray` has entered the
     /// object's box by `t`, or the object has no box.
     #[inline]
     pub fn admits(&self, index: usize, ray: &Ray, t: f64) -> bool {
-        self.0[index].is_none_or(|b| b.entered(ray.base, ray.dir.recip(), t))
+        self.boxes[index].is_none_or(|b| b.entered(ray.base, ray.dir.recip(), t))
     }
 }
 
@@ -132,17 +145,18 @@ pub struct Bvh {
 }
 
 impl Bvh {
-    /// The tree for `scene`, or `None` when it has fewer than `MIN_OBJECTS` (2) bounded
-    /// objects.
+    /// The tree for `scene`, or `None` when scanning its bounded objects costs less than
+    /// [`HIERARCHY_FROM_NS`].
     pub fn new(scene: &Scene) -> Option<Bvh> {
         Bvh::over(&Boxes::new(scene))
     }
 
-    /// The tree over `boxes` if it pays for `rays` camera rays: not when fewer than
-    /// `MIN_OBJECTS` of them are boxes, nor when building it costs more than scanning
+    /// The tree over `boxes` if it pays for `rays` camera rays: not when scanning the
+    /// bounded objects costs less than [`HIERARCHY_FROM_NS`], nor when building it costs
+    /// more than scanning
     /// (a 2x2 image of a million spheres: 4 rays against a build of 20 levels).
     pub fn for_rays(boxes: &Boxes, rays: usize) -> Option<Bvh> {
-        let bounded = boxes.0.iter().flatten().count() as f64;
+        let bounded = boxes.boxes.iter().flatten().count() as f64;
         let build = BUILD_COST_IN_TESTS * bounded.log2().max(1.0);
         if (rays as f64) < build {
             return None;
@@ -150,18 +164,19 @@ impl Bvh {
         Bvh::over(boxes)
     }
 
-    /// The tree over `boxes`, or `None` when fewer than `MIN_OBJECTS` of them are boxes.
+    /// The tree over `boxes`, or `None` when scanning them costs less than
+    /// [`HIERARCHY_FROM_NS`].
     pub fn over(boxes: &Boxes) -> Option<Bvh> {
+        if boxes.scan_ns < HIERARCHY_FROM_NS {
+            return None;
+        }
         let mut items = Vec::new();
         let mut unbounded = Vec::new();
-        for (index, b) in boxes.0.iter().enumerate() {
+        for (index, b) in boxes.boxes.iter().enumerate() {
             match b {
                 Some(b) => items.push((index as u32, *b)),
                 None => unbounded.push(index as u32),
             }
-        }
-        if items.len() < MIN_OBJECTS {
-            return None;
         }
         let mut bvh = Bvh {
             nodes: Vec::with_capacity(2 * items.len() / LEAF_SIZE + 1),
@@ -290,6 +305,17 @@ impl Bvh {
             }
         }
         false
+    }
+}
+
+/// What testing `shape` costs, in ns, for a ray that misses it, with the shipped kernel
+/// (`cargo bench --bench miss_cost`, medians of 5 passes on the machine of issue 16: the
+/// sphere 8.9, the rectangle 16.7, the quadrics 21-24 21.4-22.6).
+fn miss_ns(shape: &Shape) -> f64 {
+    match shape {
+        Shape::Sphere(_) => 8.9,
+        Shape::FinitePlane(_) => 16.7,
+        _ => 22.0,
     }
 }
 
