@@ -146,13 +146,13 @@ pub struct Bvh {
 
 impl Bvh {
     /// The tree for `scene`, or `None` when scanning its bounded objects costs less than
-    /// [`HIERARCHY_FROM_NS`].
+    /// `HIERARCHY_FROM_NS`.
     pub fn new(scene: &Scene) -> Option<Bvh> {
         Bvh::over(&Boxes::new(scene))
     }
 
     /// The tree over `boxes` if it pays for `rays` camera rays: not when scanning the
-    /// bounded objects costs less than [`HIERARCHY_FROM_NS`], nor when building it costs
+    /// bounded objects costs less than `HIERARCHY_FROM_NS`, nor when building it costs
     /// more than scanning
     /// (a 2x2 image of a million spheres: 4 rays against a build of 20 levels).
     pub fn for_rays(boxes: &Boxes, rays: usize) -> Option<Bvh> {
@@ -165,7 +165,7 @@ impl Bvh {
     }
 
     /// The tree over `boxes`, or `None` when scanning them costs less than
-    /// [`HIERARCHY_FROM_NS`].
+    /// `HIERARCHY_FROM_NS`.
     pub fn over(boxes: &Boxes) -> Option<Bvh> {
         if boxes.scan_ns < HIERARCHY_FROM_NS {
             return None;
