@@ -1,11 +1,12 @@
-//! What the speed work of issue 6 must not change: the image. Threads and the bounding
-//! volume hierarchy change only the order and number of tests, never a pixel.
+//! What the speed work of issues 6 and 16 must not change: the image. Threads, the
+//! bounding volume hierarchy and the camera rays' tiles (`accelerate: false` turns both
+//! off) change only the order and number of tests, never a pixel.
 
 #[path = "../support/generated.rs"]
 mod generated;
 
 use crate::common::{course_scenes, scene_files};
-use legacy_rt::render::{Options, render};
+use legacy_rt::render::{Options, Variant, render};
 use std::path::Path;
 
 /// The PPM bytes of `scene` rendered with `options`.
@@ -157,4 +158,69 @@ fn the_hierarchy_is_built_where_it_pays_for_its_rays() {
     let many = Boxes::new(&legacy_rt::load(&spheres(1000)).unwrap());
     assert!(Bvh::for_rays(&many, 4).is_none());
     assert!(Bvh::for_rays(&many, 16 * 12).is_some());
+}
+
+/// A room (spec1's kind of scene, and a04's): walls, floor and ceiling as planes, a
+/// tiled floor, spheres, quadrics and rectangles inside, some behind the back wall,
+/// across the eye's plane z = 3 or behind the eye, one sphere around the eye.
+fn room() -> legacy_rt::Scene {
+    let mut text = String::from("8 6\n0 0 3\n10\n9 9 9\n1 2.5 1\n10\n4 4 4\n-3 2 -2\n");
+    let material = "0.2 0.2 0.2\n2 2 2\n0.2 0.2 0.2\n";
+    for (normal, point) in [
+        ("0 0 1", "0 0 -6"),
+        ("0 -1 0", "0 3 0"),
+        ("1 0 0", "-5 0 0"),
+        ("-0.7 0 0.7", "5 0 -3"),
+    ] {
+        text.push_str(&format!("14\n{material}{normal}\n{point}\n"));
+    }
+    text.push_str(&format!(
+        "16\n{material}0 1 0\n0 -3 0\n1 0 0\n1 1\n1 1 1\n0 0 0\n0 0 0\n"
+    ));
+    for (i, centre) in [
+        "-2 -2 -4", "2 -1 -3", "0 1 -8", "3 2 -10", "-1 0 2.5", "1 -1 5", "0 0 3",
+    ]
+    .iter()
+    .enumerate()
+    {
+        let radius = [0.8, 1.0, 2.0, 1.5, 1.0, 0.7, 0.5][i];
+        text.push_str(&format!("13\n{material}{centre}\n{radius}\n"));
+    }
+    text.push_str(&format!("22\n{material}-3 -3 -5\n0 1 0\n0.5 3\n"));
+    text.push_str(&format!("23\n{material}3 -3 -7\n0 1 0.2\n1 2\n"));
+    text.push_str(&format!("15\n{material}0 0 1\n-1 -1 -7\n1 0.3 0\n2 2\n"));
+    legacy_rt::load(&text).expect("the room loads")
+}
+
+#[test]
+fn the_room_under_every_variant_renders_as_the_linear_scan() {
+    // The camera rays' tiles leave out what a nearer wall hides and what lies behind
+    // the eye; the shadow rays walk the hierarchy. Sizes that are not multiples of the
+    // tiles' 8 pixels, and every variant (pixel-centre moves the pixels, upside-down the
+    // rows, no-z-rule the planes' hits, textbook-f32 the arithmetic).
+    let scene = room();
+    assert!(legacy_rt::render::Bvh::new(&scene).is_some());
+    for variant in Variant::all() {
+        for (width, height) in [(64, 48), (53, 37)] {
+            let options = Options::new(width, height).with_variant(variant).unwrap();
+            let linear = Options {
+                accelerate: false,
+                ..options
+            };
+            let name = variant.about().id;
+            assert!(
+                bytes(&scene, &options) == bytes(&scene, &linear),
+                "{name} {width}x{height}"
+            );
+        }
+    }
+    // Not all black: the room is in view.
+    let image = bytes(&scene, &Options::new(64, 48));
+    assert!(
+        image[b"P6 64 48 255\n".len()..]
+            .iter()
+            .filter(|&&b| b > 0)
+            .count()
+            > 3000
+    );
 }
