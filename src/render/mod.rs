@@ -57,9 +57,10 @@ pub struct Options {
     /// the same bytes for every value. Without the `threads` feature (the WebAssembly
     /// build) every render uses the calling thread.
     pub threads: usize,
-    /// Use the bounding volume hierarchy of `src/render/bvh.rs` where the scene has
-    /// enough bounded objects for it to pay off; `false` forces the legacy linear scan
-    /// (for measurements and tests: the image is the same either way).
+    /// Test camera rays against their tiles' lists (`src/render/tiles.rs`) and walk the
+    /// bounding volume hierarchy of `src/render/bvh.rs` where the scene has enough
+    /// bounded objects for it to pay off; `false` forces the legacy linear scan (for
+    /// measurements and tests: the image is the same either way).
     pub accelerate: bool,
     /// How much of spec §4 applies: the course's assignments (spec §7.2).
     pub stage: Stage,
