@@ -93,9 +93,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
          machine that ran it ({} cores). The scenes are the generated family of \
          `tests/support/generated.rs`: N spheres and quadrics 21-24 on a grid filling the \
          view, a floor plane and one light. 640x480, one thread, median of 3 renders. \
-         `bvh` is the shipped renderer (a bounding volume hierarchy over the bounded \
-         objects, `src/render/bvh.rs`); `linear` is the course program's scan of every \
-         object for every ray. Both give the same bytes \
+         `bvh` is the shipped renderer (camera rays test the objects their tile of pixels \
+         sees, `src/render/tiles.rs`; the other rays walk a bounding volume hierarchy over \
+         the bounded objects, `src/render/bvh.rs`); `linear` is the course program's scan \
+         of every object for every ray. Both give the same bytes \
          (`tests/integration/performance.rs`).\n",
         std::thread::available_parallelism().map_or(1, |n| n.get())
     )?;
