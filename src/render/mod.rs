@@ -243,6 +243,8 @@ fn render_with<K: Kernel, V: Rules>(
         })
         .flatten();
     let (width, height) = (options.width, options.height);
+    // What a camera ray that hits nothing gives, in every stage and diagnostic image.
+    let background = tracer.bytes(DVec3::ZERO);
     let mut pixels = vec![[0u8; 3]; width * height];
     // One output row: pixel y = height - 1 - row (spec §4.1, top row first).
     let render_row = |row: usize, out: &mut [[u8; 3]]| {
@@ -255,11 +257,15 @@ fn render_with<K: Kernel, V: Rules>(
         };
         for (x, pixel) in out.iter_mut().enumerate() {
             stats.camera += 1;
+            let first = tiles.as_ref().and_then(|tiles| tiles.at(x, y));
+            // A tile that sees no object: its camera rays hit nothing, and the pixel is
+            // the background's, without a ray.
+            if first.is_some_and(|objects| objects.is_empty()) {
+                *pixel = background;
+                continue;
+            }
             let colour = match camera.ray(x, y) {
-                Some(ray) => {
-                    let first = tiles.as_ref().and_then(|tiles| tiles.at(x, y));
-                    tracer.pixel(ray, first, options.show, &mut stats, &mut ())
-                }
+                Some(ray) => tracer.pixel(ray, first, options.show, &mut stats, &mut ()),
                 None => DVec3::ZERO,
             };
             *pixel = tracer.bytes(colour);
