@@ -1,9 +1,11 @@
 //! What one test of a ray that misses costs, shape by shape, with the shipped kernel: the
-//! figures behind the hierarchy's cost model (`src/render/bvh.rs`, `SCAN_NS`). Each
+//! figures behind the hierarchy's cost model (`src/render/bvh.rs`, `miss_ns`). Each
 //! shape sits 11 units in front of the eye; 2,000,000 rays from the eye pass beside it.
 //! Prints the median of several passes, the shapes taking turns.
 //!
 //! Run: `cargo bench --bench miss_cost` (add `-- --runs N` for more passes).
+
+mod support;
 
 use glam::DVec3;
 use legacy_rt::shapes::Ray;
@@ -13,13 +15,7 @@ use std::time::Instant;
 const RAYS: usize = 2_000_000;
 
 fn main() {
-    let args: Vec<String> = std::env::args().collect();
-    let runs = args
-        .iter()
-        .position(|a| a == "--runs")
-        .and_then(|i| args.get(i + 1))
-        .and_then(|n| n.parse().ok())
-        .unwrap_or(5usize);
+    let runs = support::runs(5);
     let material = "1 1 1\n1 1 1\n0 0 0\n";
     let records = [
         ("sphere (13)", format!("13\n{material}0 0 -8\n1\n")),

@@ -4,18 +4,14 @@
 //! Run: `cargo bench --bench render` (add `-- --runs N` for more runs). Course scenes are
 //! read from `../shared/course-scenes` and skipped with a message where it is absent.
 
+mod support;
+
 use legacy_rt::render::{Options, render};
 use std::path::Path;
 use std::time::Instant;
 
 fn main() {
-    let args: Vec<String> = std::env::args().collect();
-    let runs = args
-        .iter()
-        .position(|a| a == "--runs")
-        .and_then(|i| args.get(i + 1))
-        .and_then(|n| n.parse().ok())
-        .unwrap_or(9usize);
+    let runs = support::runs(9);
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let scenes = [
         root.join("../shared/course-scenes/spec1.txt"),

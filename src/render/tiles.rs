@@ -28,6 +28,10 @@ use std::ops::Range;
 /// Pixels along a tile's side.
 const TILE: usize = 8;
 
+// A tile's hiding planes are the bits of a `u32`: no tile list is kept beyond
+// `MOST_OBJECTS` planes.
+const _: () = assert!(MOST_OBJECTS <= 32);
+
 /// How much of a box's own size and distance from the origin is added around it, and
 /// around its rectangle on the screen, before deciding that a pixel lies outside:
 /// 10⁻⁹ of the sizes involved, where the rounding of a ray's direction, of the
@@ -103,35 +107,36 @@ impl Tiles {
         if unbounded > MOST_OBJECTS {
             return None;
         }
-        let mut planes = Vec::new();
-        let reaches: Vec<Reach> = (scene.objects.iter().enumerate())
-            .map(|(index, object)| match (boxes.get(index), &object.shape) {
-                (Some(_), _) => Reach::Nowhere,
-                (None, Shape::Plane(p))
-                | (None, Shape::TiledPlane(PlaneFrame { plane: p, .. })) => {
-                    planes.push(SeenPlane::new(p.normal, p.point, eye));
-                    Reach::Plane(planes.len() - 1)
-                }
-                (None, _) => Reach::Everywhere,
-            })
+        // The planes, numbered in file order, then where each object can be hit.
+        let plane_of = |shape: &'_ Shape| match shape {
+            Shape::Plane(p) | Shape::TiledPlane(PlaneFrame { plane: p, .. }) => Some(p.clone()),
+            _ => None,
+        };
+        let planes: Vec<(usize, SeenPlane)> = (scene.objects.iter().enumerate())
+            .filter(|(index, _)| boxes.get(*index).is_none())
+            .filter_map(|(index, object)| Some((index, plane_of(&object.shape)?)))
+            .map(|(index, p)| (index, SeenPlane::new(p.normal, p.point, eye)))
             .collect();
-        let reaches: Vec<Reach> = (reaches.into_iter().enumerate())
-            .map(|(index, reach)| match boxes.get(index) {
-                Some((min, max)) => seen_through(eye, min, max, xs, ys, &planes),
-                None => reach,
+        let seen: Vec<&SeenPlane> = planes.iter().map(|(_, plane)| plane).collect();
+        let reaches: Vec<Reach> = (0..scene.objects.len())
+            .map(|index| match boxes.get(index) {
+                Some((min, max)) => seen_through(eye, min, max, xs, ys, &seen),
+                None => match planes.iter().position(|(i, _)| *i == index) {
+                    Some(k) => Reach::Plane(k),
+                    None => Reach::Everywhere,
+                },
             })
             .collect();
         let across = xs.len().div_ceil(TILE);
         let down = ys.len().div_ceil(TILE);
         let tiles = (0..down).flat_map(|ty| (0..across).map(move |tx| (tx, ty)));
         let corners: Vec<[DVec2; 4]> = tiles.map(|(tx, ty)| corners(xs, ys, tx, ty)).collect();
-        // Per tile, the planes that every camera ray there hits first of all the planes
-        // behind them (bit k: the k-th plane).
+        // Per tile, the planes whose hits count at every pixel there (bit k: the k-th
+        // plane): whatever lies behind one of them cannot be the closest hit there.
         let occluders: Vec<u32> = (corners.iter())
             .map(|corners| {
-                let hits = |plane: &SeenPlane| plane.counts_throughout(corners);
-                (planes.iter().enumerate())
-                    .filter(|(_, plane)| hits(plane))
+                (seen.iter().enumerate())
+                    .filter(|(_, plane)| plane.counts_throughout(corners))
                     .fold(0, |mask, (k, _)| mask | 1 << k)
             })
             .collect();
@@ -150,9 +155,9 @@ impl Tiles {
                     }
                 }
                 Reach::Plane(k) => {
-                    let plane = &planes[*k];
+                    let plane = seen[*k];
                     for (tile, corners) in corners.iter().enumerate() {
-                        let hidden = (planes.iter().enumerate()).any(|(j, nearer)| {
+                        let hidden = (seen.iter().enumerate()).any(|(j, nearer)| {
                             j != *k
                                 && occluders[tile] & 1 << j != 0
                                 && plane.behind(nearer, corners)
@@ -312,7 +317,7 @@ fn seen_through(
     max: DVec3,
     xs: &[f64],
     ys: &[f64],
-    planes: &[SeenPlane],
+    planes: &[&SeenPlane],
 ) -> Reach {
     let grow = MARGIN * ((max - min).max_element() + min.abs().max(max.abs()).max_element());
     let (min, max) = (min - grow, max + grow);
