@@ -1,6 +1,6 @@
-//! Short lists of objects, one per cell of a grid (a tile of pixels, a cell of a light's
-//! directions), each in file order. A cell that would hold more than [`MOST_OBJECTS`]
-//! keeps no list: its rays take the usual path (the hierarchy, or every object).
+//! Short lists of objects, one per cell of a grid (a tile of pixels), each in the order
+//! the objects were added. A cell that would hold more than [`MOST_OBJECTS`] keeps no
+//! list: its rays take the usual path (the hierarchy, or every object).
 
 /// The longest list kept. Measured with callgrind (320x240 and 640x480, the course
 /// scenes spec1, a04, d04, the gallery and the Tachyon twins): 16 gives a04 2-4 % fewer
@@ -32,7 +32,7 @@ impl Builder {
         }
     }
 
-    /// Adds object `index` to `cell`'s list. Objects are added in file order.
+    /// Adds object `index` to `cell`'s list.
     pub(crate) fn add(&mut self, cell: usize, index: usize) {
         if !self.kept[cell] {
             return;
@@ -68,7 +68,7 @@ impl Builder {
 }
 
 impl Lists {
-    /// Cell `cell`'s objects in file order, or `None` when it keeps no list.
+    /// Cell `cell`'s objects, or `None` when it keeps no list.
     #[inline]
     pub(crate) fn get(&self, cell: usize) -> Option<&[u32]> {
         let range = self.starts[cell] as usize..self.starts[cell + 1] as usize;

@@ -27,7 +27,7 @@ use crate::shapes::kernel::{Accurate, Kernel, KernelChoice, StableRoots, Textboo
 use crate::shapes::{Ray, Shape, Surface, unit};
 use glam::{DVec2, DVec3};
 use std::marker::PhantomData;
-use tiles::Tiles;
+use tiles::{Tile, Tiles};
 use variant::{AsSpecified, Deviating, Divisor, FirstRoot, Rules};
 
 /// The default MAX_DIST of spec §4.2.
@@ -260,7 +260,7 @@ fn render_with<K: Kernel, V: Rules>(
             let first = tiles.as_ref().and_then(|tiles| tiles.at(x, y));
             // A tile that sees no object: its camera rays hit nothing, and the pixel is
             // the background's, without a ray.
-            if first.is_some_and(|objects| objects.is_empty()) {
+            if first.is_some_and(|tile| tile.objects.is_empty()) {
                 *pixel = background;
                 continue;
             }
@@ -585,27 +585,31 @@ impl<'a, K: Kernel, V: Rules> Tracer<'a, K, V> {
     }
 
     /// The closest object with t > 0 along `ray`, skipping `last_hit`; ties go to the
-    /// earlier object (spec §4.6). `candidates`, when given, holds in file order every
-    /// object whose hit could count (a camera ray's tile list).
+    /// earlier object (spec §4.6). `candidates`, when given, holds near to far every
+    /// object whose hit could count (a camera ray's tile).
     #[inline(always)]
     fn closest_hit<R: Recorder>(
         &self,
         ray: &Ray,
         last_hit: Option<usize>,
-        candidates: Option<&[u32]>,
+        candidates: Option<Tile>,
         rec: &mut R,
     ) -> Option<(usize, f64)> {
         let (last_hit, least) = self.leaving(last_hit);
         let counts = |index: usize, t: f64| t > least && self.boxes.admits(index, ray, t);
-        if let Some(candidates) = candidates
+        if let Some(tile) = candidates
             && !R::EVERY_TEST
         {
+            // Near to far: past the best hit so far, nothing can win or tie.
             let mut best: Option<(usize, f64)> = None;
-            for &index in candidates {
+            for &index in tile.objects {
                 let index = index as usize;
+                if best.is_some_and(|(_, t)| tile.nearest[index] > t) {
+                    break;
+                }
                 if Some(index) != last_hit
                     && let Some(t) = self.hit(&self.scene.objects[index].shape, ray)
-                    && best.is_none_or(|(_, best_t)| t < best_t)
+                    && best.is_none_or(|(i, b)| t < b || (t == b && index < i))
                     && counts(index, t)
                 {
                     best = Some((index, t));
@@ -679,11 +683,11 @@ impl<'a, K: Kernel, V: Rules> Tracer<'a, K, V> {
     /// ray_trace of spec §4.2, with the mirror recursion unrolled into a loop: the colour
     /// is Σ (S₁ ⊙ … ⊙ Sₖ) ⊙ Iₖ₊₁ / total_distₖ₊₁ over the bounces. The stage (spec §7.2)
     /// leaves out the lights, the shadow rays or the reflection.
-    /// `first`, when given, holds every object the camera ray may hit (its tile's list).
+    /// `first`, when given, is the camera ray's tile: every object the ray may hit.
     fn trace<R: Recorder>(
         &self,
         mut ray: Ray,
-        first: Option<&[u32]>,
+        first: Option<Tile>,
         stats: &mut Stats,
         rec: &mut R,
     ) -> DVec3 {
@@ -828,7 +832,7 @@ impl<'a, K: Kernel, V: Rules> Tracer<'a, K, V> {
 
     /// The diagnostic image of `show` at the first hit along `ray` (spec §7.2's companions:
     /// normals, object ids, distance).
-    fn show<R: Recorder>(&self, ray: Ray, show: Show, first: Option<&[u32]>, rec: &mut R) -> DVec3 {
+    fn show<R: Recorder>(&self, ray: Ray, show: Show, first: Option<Tile>, rec: &mut R) -> DVec3 {
         rec.record(|| Event::Segment {
             depth: 0,
             ray,
@@ -857,7 +861,7 @@ impl<'a, K: Kernel, V: Rules> Tracer<'a, K, V> {
     fn pixel<R: Recorder>(
         &self,
         ray: Ray,
-        first: Option<&[u32]>,
+        first: Option<Tile>,
         show: Option<Show>,
         stats: &mut Stats,
         rec: &mut R,

@@ -1,8 +1,10 @@
 //! The objects that the camera rays of each tile of pixels can hit: every camera ray
 //! starts at the eye, so an object's box seen from the eye covers a rectangle of the
 //! screen, and a ray through a pixel outside it cannot reach the box. The renderer tests
-//! a camera ray only against its tile's list, in file order (an item buffer), where
-//! otherwise it would walk the hierarchy or test every object.
+//! a camera ray only against its tile's list (an item buffer), where otherwise it would
+//! walk the hierarchy or test every object. The list runs from near to far: the objects
+//! without a box first, then by the distance from the eye to the box, so that the test
+//! can stop at the first box farther than the best hit so far.
 //!
 //! Like the hierarchy ([`super::Bvh`]) it changes which objects are tested, never the
 //! answer: a camera ray's hit on a bounded object counts only where the ray has entered
@@ -60,6 +62,18 @@ pub(crate) struct Tiles {
     across: usize,
     /// Per tile, row by row.
     lists: Lists,
+    /// Per object, a distance from the eye that no camera ray's hit that counts falls
+    /// short of (see [`nearest`]).
+    nearest: Vec<f64>,
+}
+
+/// A camera ray's tile: the objects it may hit, near to far.
+#[derive(Clone, Copy)]
+pub(crate) struct Tile<'a> {
+    /// The objects, by `nearest` and then in file order.
+    pub(crate) objects: &'a [u32],
+    /// Per object of the scene, [`nearest`].
+    pub(crate) nearest: &'a [f64],
 }
 
 /// Where an object can be hit by camera rays.
@@ -140,15 +154,24 @@ impl Tiles {
                     .fold(0, |mask, (k, _)| mask | 1 << k)
             })
             .collect();
+        let nearest: Vec<f64> = (0..scene.objects.len())
+            .map(|index| {
+                boxes
+                    .get(index)
+                    .map_or(0.0, |(min, max)| nearest(eye, min, max))
+            })
+            .collect();
+        let mut order: Vec<usize> = (0..scene.objects.len()).collect();
+        order.sort_by(|&i, &j| nearest[i].total_cmp(&nearest[j]).then(i.cmp(&j)));
         let mut lists = Builder::new(across * down);
-        for (index, reach) in reaches.iter().enumerate() {
-            match reach {
+        for index in order {
+            match &reaches[index] {
                 Reach::Nowhere => {}
                 Reach::Pixels(columns, rows, hidden_by) => {
                     for ty in rows.start / TILE..rows.end.div_ceil(TILE) {
                         for tx in columns.start / TILE..columns.end.div_ceil(TILE) {
                             let tile = ty * across + tx;
-                            if occluders[tile] & hidden_by == 0 {
+                            if occluders[tile] & *hidden_by == 0 {
                                 lists.add(tile, index);
                             }
                         }
@@ -173,15 +196,27 @@ impl Tiles {
         Some(Tiles {
             across,
             lists: lists.finish(),
+            nearest,
         })
     }
 
-    /// The objects that the camera ray through pixel (x, y) may hit, in file order, or
-    /// `None` when its tile keeps no list.
+    /// The tile of the camera ray through pixel (x, y), or `None` when it keeps no list.
     #[inline]
-    pub(crate) fn at(&self, x: usize, y: usize) -> Option<&[u32]> {
-        self.lists.get(y / TILE * self.across + x / TILE)
+    pub(crate) fn at(&self, x: usize, y: usize) -> Option<Tile<'_>> {
+        Some(Tile {
+            objects: self.lists.get(y / TILE * self.across + x / TILE)?,
+            nearest: &self.nearest,
+        })
     }
+}
+
+/// A distance from `eye` short of any point of the box (min, max), by [`MARGIN`] of
+/// itself: a camera ray's hit on the box's object counts only where the ray has entered
+/// the box by then ([`super::Boxes::admits`]), at least this far from the eye whatever
+/// the rounding of the ray and of the box test. 0 when the eye is inside the box.
+fn nearest(eye: DVec3, min: DVec3, max: DVec3) -> f64 {
+    let gap = (min - eye).max(eye - max).max(DVec3::ZERO);
+    gap.length() * (1.0 - MARGIN)
 }
 
 /// The world points of the corner pixels of tile (tx, ty).
@@ -483,9 +518,10 @@ mod tests {
                 };
                 for y in 0..30 {
                     for x in 0..41 {
-                        let (Some(list), Some(ray)) = (tiles.at(x, y), camera.ray(x, y)) else {
+                        let (Some(tile), Some(ray)) = (tiles.at(x, y), camera.ray(x, y)) else {
                             continue;
                         };
+                        let list = tile.objects;
                         kept += 1;
                         let listed = || list.iter().map(|&i| i as usize);
                         let every = || 0..scene.objects.len();
