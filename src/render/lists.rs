@@ -2,10 +2,13 @@
 //! the objects were added. A cell that would hold more than [`MOST_OBJECTS`] keeps no
 //! list: its rays take the usual path (the hierarchy, or every object).
 
-/// The longest list kept. Measured with callgrind (320x240 and 640x480, the course
-/// scenes spec1, a04, d04, the gallery and the Tachyon twins): 16 gives a04 2-4 % fewer
-/// instructions than 8, and no scene more than 1 % more; 32 gives nothing over 16.
-pub(crate) const MOST_OBJECTS: usize = 16;
+/// The longest list kept. Measured with callgrind at 320x240 on the course scenes
+/// spec1, a04, d04, the gallery, the Tachyon twins and the 1,000-object scene of
+/// `bench/compare.sh`: 16 gives a04 2-4 % fewer instructions than 8; once the lists ran
+/// near to far, 32 gives the 1,000-object scene 1.12x fewer than 16 (64: 1.002x fewer
+/// than 32), and the others the same. A tile's hiding planes are the bits of a `u32`, so
+/// it is at most 32 (`src/render/tiles.rs`).
+pub(crate) const MOST_OBJECTS: usize = 32;
 
 /// The finished lists.
 #[derive(Debug, Clone)]
