@@ -252,7 +252,7 @@ impl Bvh {
         counts: impl Fn(usize, f64) -> bool,
     ) -> Option<(usize, f64)> {
         let mut best: Option<(usize, f64)> = None;
-        let mut visit = |objects: &[u32]| {
+        self.walk(ray, |objects| {
             for &index in objects {
                 let index = index as usize;
                 if let Some(t) = test(index)
@@ -263,34 +263,26 @@ impl Bvh {
                 }
             }
             Some(best.map_or(f64::INFINITY, |(_, t)| t))
-        };
-        // The unbounded objects first: a plane's hit often bounds the walk early.
-        if let Some(limit) = visit(&self.unbounded) {
-            self.walk(ray, limit, visit);
-        }
+        });
         best
     }
 
-    /// Whether `test` finds any object hit before `limit`: the bounded objects first
-    /// (their tests are the cheaper, and a box the ray misses skips them), then the
-    /// unbounded ones.
+    /// Whether `test` finds any object hit before `limit`.
     #[inline]
     pub fn any(&self, ray: &Ray, limit: f64, test: impl Fn(usize) -> bool) -> bool {
-        let visit =
-            |objects: &[u32]| (!objects.iter().any(|&index| test(index as usize))).then_some(limit);
-        self.walk(ray, limit, visit) || self.unbounded.iter().any(|&index| test(index as usize))
+        self.walk(ray, |objects| {
+            (!objects.iter().any(|&index| test(index as usize))).then_some(limit)
+        })
     }
 
-    /// Hands `visit` the objects of every leaf whose box the ray enters before the limit
-    /// (`limit`, then what `visit` last returned), nearer child first. `visit` returns
-    /// the new limit, or `None` to stop; `walk` returns whether it was stopped.
+    /// Hands `visit` the unbounded objects, then the objects of every leaf whose box the
+    /// ray enters before the limit `visit` last returned, nearer child first. `visit` returns the new
+    /// limit, or `None` to stop; `walk` returns whether it was stopped.
     #[inline]
-    fn walk(
-        &self,
-        ray: &Ray,
-        mut limit: f64,
-        mut visit: impl FnMut(&[u32]) -> Option<f64>,
-    ) -> bool {
+    fn walk(&self, ray: &Ray, mut visit: impl FnMut(&[u32]) -> Option<f64>) -> bool {
+        let Some(mut limit) = visit(&self.unbounded) else {
+            return true;
+        };
         let inverse = ray.dir.recip();
         let mut stack = Stack::new();
         while let Some(at) = stack.pop() {
