@@ -36,6 +36,10 @@ fn main() {
             "hyperboloid (24)",
             format!("24\n{material}0 -1 -8\n0 1 0\n1 1\n0.5\n"),
         ),
+        (
+            "QUADRIC ellipsoid",
+            format!("QUADRIC 1 0 0 0 4 0 0 1 8 63\n{material}"),
+        ),
     ];
     let scenes: Vec<_> = records
         .iter()

@@ -18,7 +18,7 @@
 //! the hit counts), a plane that lies beyond it at all four corners, and an object whose
 //! box lies wholly on its far side, cannot be the closest hit there and are left out.
 //! Each sign is decided by a margin that even the single-precision kernel cannot cross.
-//! Other unbounded objects (`QUADRIC`) are in every tile.
+//! Other unbounded objects (an open `QUADRIC`) are in every tile.
 
 use super::bvh::Boxes;
 use super::lists::{Builder, Lists, MOST_OBJECTS};

@@ -332,7 +332,8 @@ impl Shape {
     }
 
     /// An axis-aligned box (min, max) that holds every hit this shape can report, or
-    /// `None` for the unbounded ones: planes, tiled and procedural planes, `QUADRIC`.
+    /// `None` for the unbounded ones: planes, tiled and procedural planes, and a `QUADRIC`
+    /// that is not an ellipsoid ([`Quadric::bounds`]).
     pub fn bounds(&self) -> Option<(DVec3, DVec3)> {
         match self {
             Shape::Sphere(s) => s.equation.bounds(),
@@ -341,7 +342,8 @@ impl Shape {
             Shape::Cone(s) => s.equation.bounds(),
             Shape::Hyperboloid(s) => s.equation.bounds(),
             Shape::FinitePlane(s) => Some(s.bounds()),
-            Shape::Plane(_) | Shape::TiledPlane(_) | Shape::Quadric(_) => None,
+            Shape::Quadric(s) => s.bounds(),
+            Shape::Plane(_) | Shape::TiledPlane(_) => None,
         }
     }
 
