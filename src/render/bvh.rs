@@ -256,7 +256,7 @@ impl Bvh {
             for &index in objects {
                 let index = index as usize;
                 if let Some(t) = test(index)
-                    && best.is_none_or(|(i, b)| t < b || (t == b && index < i))
+                    && beats(best, index, t)
                     && counts(index, t)
                 {
                     best = Some((index, t));
@@ -319,6 +319,14 @@ fn miss_ns(shape: &Shape) -> f64 {
         Shape::Quadric(_) => 27.0,
         _ => 22.0,
     }
+}
+
+/// Whether a hit at `t` on object `index` beats `best`, the closest so far in whatever
+/// order objects are tested: a smaller t, or on an exact tie the earlier object, which
+/// is the linear scan's answer (spec §4.6).
+#[inline(always)]
+pub(crate) fn beats(best: Option<(usize, f64)>, index: usize, t: f64) -> bool {
+    best.is_none_or(|(i, b)| t < b || (t == b && index < i))
 }
 
 /// Bins of the surface area heuristic.

@@ -609,7 +609,7 @@ impl<'a, K: Kernel, V: Rules> Tracer<'a, K, V> {
                 }
                 if Some(index) != last_hit
                     && let Some(t) = self.hit(&self.scene.objects[index].shape, ray)
-                    && best.is_none_or(|(i, b)| t < b || (t == b && index < i))
+                    && bvh::beats(best, index, t)
                     && counts(index, t)
                 {
                     best = Some((index, t));

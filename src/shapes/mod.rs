@@ -309,6 +309,16 @@ impl Shape {
         }
     }
 
+    /// The plane of a plane-based shape (14-17, 20): every hit of the shape lies on it.
+    pub fn plane(&self) -> Option<&Plane> {
+        match self {
+            Shape::Plane(s) => Some(s),
+            Shape::FinitePlane(s) => Some(&s.frame.plane),
+            Shape::TiledPlane(s) => Some(&s.plane),
+            _ => None,
+        }
+    }
+
     /// The plane of a plane-based shape (14-17, 20), to drop its z rule (the variant
     /// no-z-rule).
     pub fn plane_mut(&mut self) -> Option<&mut Plane> {
@@ -381,6 +391,25 @@ impl Shape {
 pub(crate) mod testing {
     pub use super::Ray;
     pub use super::kernel::Accurate;
+
+    /// Numbers in [0, 1) from a fixed seed (xorshift64), so that a test's random cases
+    /// are the same on every run.
+    pub struct Numbers(pub u64);
+
+    impl Numbers {
+        /// The next number.
+        pub fn next(&mut self) -> f64 {
+            self.0 ^= self.0 << 13;
+            self.0 ^= self.0 >> 7;
+            self.0 ^= self.0 << 17;
+            (self.0 >> 11) as f64 / (1u64 << 53) as f64
+        }
+
+        /// The next number scaled to [low, high).
+        pub fn within(&mut self, low: f64, high: f64) -> f64 {
+            low + (high - low) * self.next()
+        }
+    }
 }
 
 #[cfg(test)]

@@ -240,13 +240,8 @@ mod tests {
         assert!((max - exact.1).abs().max_element() < 1e-6, "{max}");
         // Turned ellipsoids far from the origin, and rays through them from all sides:
         // every hit the accurate kernel finds lies in the box.
-        let mut seed = 0x2026_1122_u64;
-        let mut next = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut numbers = Numbers(0x2026_1122);
+        let mut next = || numbers.next();
         let (mut boxed, mut hits) = (0, 0);
         for _ in 0..200 {
             let axes = DVec3::new(0.2 + 2.0 * next(), 0.2 + 2.0 * next(), 0.2 + 2.0 * next());

@@ -768,13 +768,8 @@ mod tests {
     fn a_certain_miss_is_a_miss_of_the_accurate_path_and_clear_misses_are_certain() {
         // Rays at distance d = r (1 + e) from the centre, e from -1e-3 to 1e-1 on both
         // sides of tangency, spheres from 1e-6 to 1e6 across, bases near and far.
-        let mut state = 0x2545_f491_4f6c_dd1du64;
-        let mut next = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut numbers = crate::shapes::testing::Numbers(0x2545_f491_4f6c_dd1d);
+        let mut next = || numbers.next();
         let (mut rejected, mut clear) = (0, 0);
         for case in 0..20_000 {
             let scale = 10f64.powf(12.0 * next() - 6.0);
