@@ -43,6 +43,21 @@ pub(crate) fn quoted(token: &str) -> String {
     shown
 }
 
+/// A name (a file's, as the user gave it) as a message shows it: every control and
+/// invisible character escaped as `\u{1b}`, tabs and newlines included, so that
+/// a name cannot start a line of its own or move the terminal's cursor.
+pub fn escaped(name: &str) -> String {
+    let mut shown = String::new();
+    for c in name.chars() {
+        match visible(c) {
+            Some(escape) => shown.push_str(&escape),
+            None if c == '\t' => shown.push_str(&c.escape_unicode().to_string()),
+            None => shown.push(c),
+        }
+    }
+    shown
+}
+
 /// The part of `line` an error shows around the 1-based `column`, escaped, and the
 /// caret's padding under it (tabs repeated so that the caret lines up).
 fn excerpt(line: &str, column: usize) -> (String, String) {

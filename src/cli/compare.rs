@@ -3,11 +3,14 @@
 //! worst pixels with the `trace` command that explains each, and with `--diagnose` the
 //! student's likely mistake.
 
+use super::io::{MAX_INPUT, emit_to_stdout, open_regular, read_all, same_file, text_of};
 use super::render::write_image;
-use super::{Failure, HowArgs, output_file, size, threads};
-use legacy_rt::compare::read::{Content, content};
+use super::{Failure, HowArgs, check_stdout, output_file, pixels, size, threads};
+use legacy_rt::compare::read::{Content, DEFAULT_MAX_PIXELS, content};
 use legacy_rt::compare::{self, Settings, Tolerance, Verdict};
-use std::io::Read;
+use legacy_rt::error::escaped;
+use std::fs::File;
+use std::io::{BufReader, Read, Seek, SeekFrom};
 use std::path::{Path, PathBuf};
 
 /// Examples for `compare --help`.
@@ -25,9 +28,11 @@ Examples:
   done
 
 The first file is a scene or an image, told apart by its content. Images are PPM (P6 or
-P3, 8 bits) or PNG. Exit status: 0 when the images match within the tolerance, 1 when
-they differ, 2 on an error (an unreadable, truncated, grey or 16-bit image, images of two
-sizes, a scene that does not load). The diff image shows the reference in grey where the
+P3, 8 bits) or PNG, regular files of at most --max-pixels pixels (4096x4096 unless
+raised). Exit status: 0 when the images match within the tolerance, 1 when they differ
+(or, with --size, when the student's image has another size: verdict wrong-size), 2 on an
+error (an unreadable, damaged, truncated, grey or 16-bit image, a pipe or device, images
+of two sizes, a scene that does not load). The diff image shows the reference in grey where the
 pixels match, and differing pixels in blue (1-3 levels), yellow (4-31) or red (32-255).";
 
 /// The comparison's arguments.
@@ -73,6 +78,16 @@ pub struct CompareArgs {
     #[arg(long, value_name = "N", default_value_t = 0, value_parser = threads)]
     threads: usize,
 
+    /// The size the student's image must have: another size is verdict wrong-size (exit
+    /// 1) instead of a reference rendered at the student's size
+    #[arg(long, value_names = ["W", "H"], num_args = 2, value_parser = pixels)]
+    size: Option<Vec<u64>>,
+
+    /// The most pixels an image may have; a larger one is refused from its header,
+    /// before it is decoded [default: 16777216, 4096x4096]
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_MAX_PIXELS, value_parser = max_pixels, hide_default_value = true)]
+    max_pixels: u64,
+
     /// How the reference is computed (with a scene).
     #[command(flatten)]
     how: HowArgs,
@@ -86,39 +101,32 @@ fn percent(text: &str) -> Result<f64, String> {
     }
 }
 
-/// The largest file read.
-const MAX_FILE: u64 = 256 << 20;
-
-/// A file's bytes, at most `MAX_FILE`.
-fn read_file(path: &Path) -> Result<Vec<u8>, Failure> {
-    let shown = path.display();
-    let cannot = |error: std::io::Error| Failure(format!("error: cannot read {shown}: {error}"), 2);
-    if path.is_dir() {
-        return Err(Failure(
-            format!("error: {shown} is a folder, not a file"),
-            2,
-        ));
+/// Parses `--max-pixels`, a positive count.
+fn max_pixels(text: &str) -> Result<u64, String> {
+    match text.replace('_', "").parse::<u64>() {
+        Ok(n) if n > 0 => Ok(n),
+        _ => Err("expected a whole number of pixels, such as 16777216 (4096x4096)".to_string()),
     }
-    let mut bytes = Vec::new();
-    let file = std::fs::File::open(path).map_err(cannot)?;
-    file.take(MAX_FILE + 1)
-        .read_to_end(&mut bytes)
-        .map_err(cannot)?;
-    if bytes.len() as u64 > MAX_FILE {
-        let mib = MAX_FILE >> 20;
-        return Err(Failure(
-            format!("error: {shown} is larger than {mib} MiB"),
-            2,
-        ));
-    }
-    Ok(bytes)
 }
 
-/// An image file, or exit 2 naming it and what is wrong.
-fn read_image(path: &Path, role: &str) -> Result<legacy_rt::Image, Failure> {
-    let bytes = read_file(path)?;
-    let shown = path.display().to_string();
-    compare::read::image_named(&bytes, &shown, role).map_err(|message| Failure(message, 2))
+/// The first bytes of a file, enough to tell an image from a scene.
+fn first_bytes(file: &mut File, shown: &str) -> Result<Vec<u8>, Failure> {
+    let mut start = Vec::new();
+    (&mut *file)
+        .take(16)
+        .read_to_end(&mut start)
+        .and_then(|_| file.seek(SeekFrom::Start(0)))
+        .map_err(|error| Failure(format!("error: cannot read {shown}: {error}"), 2))?;
+    Ok(start)
+}
+
+/// An image file (a regular file, decoded from the disk as it is read), or exit 2 naming
+/// it and what is wrong.
+fn read_image(path: &Path, role: &str, max_pixels: u64) -> Result<legacy_rt::Image, Failure> {
+    let file = open_regular(path)?;
+    let shown = escaped(&path.display().to_string());
+    compare::read::image_named(BufReader::new(file), max_pixels, &shown, role)
+        .map_err(|message| Failure(message, 2))
 }
 
 /// Compares; `Ok(true)` when the images match.
@@ -128,27 +136,27 @@ pub fn run(args: &CompareArgs) -> Result<bool, Failure> {
 }
 
 fn run_inner(args: &CompareArgs) -> Result<bool, Failure> {
-    if let Some(diff) = &args.diff {
-        // `--diff mine.ppm` would replace the image being graded with its diff.
-        let same = |other: &Path| match (diff.canonicalize(), other.canonicalize()) {
-            (Ok(a), Ok(b)) => a == b,
-            _ => false,
-        };
-        if same(&args.student) || same(&args.reference) {
-            return Err(Failure(
-                format!(
-                    "error: --diff {} names a file being compared; give the diff image \
-                     another name",
-                    diff.display()
-                ),
-                2,
-            ));
-        }
+    check_stdout()?;
+    if let Some(diff) = &args.diff
+        && (same_file(diff, &args.student) || same_file(diff, &args.reference))
+    {
+        // `--diff mine.ppm`, or a hard link to it, would replace the image being graded.
+        return Err(Failure(
+            format!(
+                "error: --diff {} names a file being compared; give the diff image \
+                 another name",
+                escaped(&diff.display().to_string())
+            ),
+            2,
+        ));
     }
     let diff = output_file(args.diff.as_deref())?;
     args.how.check()?;
-    let first = read_file(&args.reference)?;
-    let student = read_image(&args.student, "student's image")?;
+    let shown = escaped(&args.reference.display().to_string());
+    let student_shown = escaped(&args.student.display().to_string());
+    let mut first = open_regular(&args.reference)?;
+    let is_scene = content(&first_bytes(&mut first, &shown)?) == Content::Text;
+    let student = read_image(&args.student, "student's image", args.max_pixels)?;
     let settings = Settings {
         tolerance: Tolerance {
             levels: args.tolerance,
@@ -157,12 +165,20 @@ fn run_inner(args: &CompareArgs) -> Result<bool, Failure> {
         worst: args.worst,
         diagnose: args.diagnose,
     };
-    let shown = args.reference.display().to_string();
-    let (reference, scene, options) = match content(&first) {
-        Content::Text => {
-            let text = String::from_utf8_lossy(&first);
-            let scene =
-                legacy_rt::load(&text).map_err(|error| Failure(format!("{shown}: {error}"), 2))?;
+    let choices = args.how.choices();
+    if let Some(&[w, h]) = args.size.as_deref()
+        && (student.width as u64, student.height as u64) != (w, h)
+    {
+        let report = compare::wrong_size(&student, (w as usize, h as usize), &settings);
+        let choices = is_scene.then_some(&choices);
+        emit_report(args, &report, &shown, &student_shown, choices)?;
+        return Ok(false);
+    }
+    let (reference, scene, options) = match is_scene {
+        true => {
+            let bytes = read_all(first, &args.reference, MAX_INPUT)?;
+            let scene = legacy_rt::load(&text_of(bytes))
+                .map_err(|error| Failure(format!("{shown}: {error}"), 2))?;
             let given = (Some(student.width as u64), Some(student.height as u64));
             let (w, h) = size(given, &scene)?;
             let options = legacy_rt::Options {
@@ -172,7 +188,7 @@ fn run_inner(args: &CompareArgs) -> Result<bool, Failure> {
             let reference = compare::reference(&scene, &options, &student);
             (reference, Some(scene), Some(options))
         }
-        _ => {
+        false => {
             if args.diagnose {
                 return Err(Failure(
                     "error: --diagnose needs the scene: give the scene file first, not an \
@@ -181,18 +197,26 @@ fn run_inner(args: &CompareArgs) -> Result<bool, Failure> {
                     2,
                 ));
             }
-            (read_image(&args.reference, "reference image")?, None, None)
+            drop(first);
+            let reference = read_image(&args.reference, "reference image", args.max_pixels)?;
+            (reference, None, None)
         }
     };
     let with_scene = scene.as_ref().zip(options.as_ref());
     let mut report = compare::report(&reference, &student, with_scene, &settings)
         .map_err(|error| Failure(format!("error: {error}"), 2))?;
     // The choices that made the reference, when it was rendered from the scene.
-    let choices = options.is_some().then(|| args.how.choices());
+    let choices = options.is_some().then_some(choices);
     if let Some((options, choices)) = options.as_ref().zip(choices.as_ref()) {
         for worst in &mut report.worst {
             let (x, y) = (worst.x, worst.y);
-            let command = compare::text::trace_command(choices, options, &shown, x, y);
+            let command = compare::text::trace_command(
+                choices,
+                options,
+                &args.reference.display().to_string(),
+                x,
+                y,
+            );
             worst.trace = Some(command);
         }
     }
@@ -201,19 +225,25 @@ fn run_inner(args: &CompareArgs) -> Result<bool, Failure> {
             .map_err(|error| Failure(format!("error: {error}"), 2))?;
         write_image(&image, diff.format, Some(diff))?;
     }
+    emit_report(args, &report, &shown, &student_shown, choices.as_ref())?;
+    Ok(report.verdict == Verdict::Match)
+}
+
+/// Prints the report, as text or JSON, on standard output.
+fn emit_report(
+    args: &CompareArgs,
+    report: &compare::Report,
+    reference: &str,
+    student: &str,
+    choices: Option<&legacy_rt::render::Choices>,
+) -> Result<(), Failure> {
     let out = match args.json {
         true => {
-            let json = serde_json::to_string_pretty(&report)
+            let json = serde_json::to_string_pretty(report)
                 .map_err(|error| Failure(format!("error: {error}"), 2))?;
             json + "\n"
         }
-        false => compare::text::text(
-            &report,
-            &shown,
-            &args.student.display().to_string(),
-            choices.as_ref(),
-        ),
+        false => compare::text::text(report, reference, student, choices),
     };
-    super::io::emit_to_stdout(out.as_bytes())?;
-    Ok(report.verdict == Verdict::Match)
+    emit_to_stdout(out.as_bytes())
 }

@@ -1,10 +1,13 @@
-//! Standard input and output: the scene text in, the image or the text out.
+//! Standard input and output, and the files the command line reads: the scene text in,
+//! the image or the text out, and files that students uploaded.
 
 use super::Failure;
+use std::fs::File;
 use std::io::{IsTerminal, Read};
+use std::path::Path;
 
-/// The largest scene text accepted on standard input.
-const MAX_INPUT: u64 = 256 << 20;
+/// The largest scene text accepted on standard input, and the largest text file read.
+pub const MAX_INPUT: u64 = 256 << 20;
 
 /// The scene text from standard input, at most `MAX_INPUT` bytes.
 pub fn read_scene() -> Result<String, Failure> {
@@ -28,20 +31,142 @@ pub fn read_scene() -> Result<String, Failure> {
             "the scene is larger than {mib} MiB, the most this program reads"
         )));
     }
-    // Valid UTF-8 (nearly every scene) becomes the String without a copy.
-    Ok(String::from_utf8(text)
-        .unwrap_or_else(|invalid| String::from_utf8_lossy(invalid.as_bytes()).into_owned()))
+    Ok(text_of(text))
 }
 
-/// Writes `bytes` to standard output.
+/// Bytes as text: valid UTF-8 (nearly every scene) becomes the String without a copy.
+pub fn text_of(bytes: Vec<u8>) -> String {
+    String::from_utf8(bytes)
+        .unwrap_or_else(|invalid| String::from_utf8_lossy(invalid.as_bytes()).into_owned())
+}
+
+/// Fails when standard output was closed at start: checked before any work, so that a
+/// run whose output has nowhere to go fails at once instead of rendering into nothing.
+pub fn check_stdout() -> Result<(), Failure> {
+    match stdout_was_closed() {
+        true => Err(Failure(
+            "error: standard output is closed, so the output has nowhere to go: \
+             redirect it (> out.ppm) or give -o FILE"
+                .to_string(),
+            2,
+        )),
+        false => Ok(()),
+    }
+}
+
+/// Writes `bytes` to standard output; standard output closed is an error that says so.
 pub fn emit_to_stdout(bytes: &[u8]) -> Result<(), Failure> {
+    check_stdout()?;
     match legacy_rt::image_output::write(&mut std::io::stdout().lock(), bytes) {
         Ok(()) => Ok(()),
         // The reader went away (`| head`): end quietly.
         Err(error) if error.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
         Err(error) => Err(Failure(
-            format!("error: cannot write the image: {error}"),
+            format!("error: cannot write to standard output: {error}"),
             2,
         )),
+    }
+}
+
+/// Whether the program was started with standard output closed (`>&-`). Rust's runtime
+/// then opens /dev/null read-write in its place before `main`, and every write succeeds
+/// into nothing; a user's own `> /dev/null` opens it write-only. So: descriptor 1 is
+/// /dev/null (character device 1:3), opened read-write.
+fn stdout_was_closed() -> bool {
+    #[cfg(target_os = "linux")]
+    {
+        use std::os::fd::AsRawFd;
+        use std::os::unix::fs::{FileTypeExt, MetadataExt};
+        let fd = std::io::stdout().as_raw_fd();
+        // SAFETY: F_GETFL reads the descriptor's flags and changes nothing.
+        let flags = unsafe { libc::fcntl(fd, libc::F_GETFL) };
+        if flags == -1 {
+            return true;
+        }
+        if flags & libc::O_ACCMODE != libc::O_RDWR {
+            return false;
+        }
+        let Ok(null) = std::fs::metadata("/dev/null") else {
+            return false;
+        };
+        // The descriptor's own metadata, through /proc (no unsafe fstat needed).
+        let Ok(own) = std::fs::metadata(format!("/proc/self/fd/{fd}")) else {
+            return false;
+        };
+        own.file_type().is_char_device() && own.rdev() == null.rdev()
+    }
+    #[cfg(not(target_os = "linux"))]
+    {
+        false
+    }
+}
+
+/// A file a user named, opened for reading only if it is a regular file: a FIFO, a
+/// socket or a device would block the open or the read, or never end. Opened without
+/// blocking, then asked what it is, so that even a FIFO with no writer is an error at
+/// once. `shown` names it in messages.
+pub fn open_regular(path: &Path) -> Result<File, Failure> {
+    let shown = legacy_rt::error::escaped(&path.display().to_string());
+    let cannot = |error: std::io::Error| Failure(format!("error: cannot read {shown}: {error}"), 2);
+    let mut options = std::fs::OpenOptions::new();
+    options.read(true);
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::OpenOptionsExt;
+        options.custom_flags(libc::O_NONBLOCK);
+    }
+    let file = options.open(path).map_err(cannot)?;
+    let kind = file.metadata().map_err(cannot)?.file_type();
+    if kind.is_dir() {
+        return Err(Failure(
+            format!("error: {shown} is a folder, not a file"),
+            2,
+        ));
+    }
+    if !kind.is_file() {
+        return Err(Failure(
+            format!(
+                "error: {shown} is not a regular file (a pipe, socket or device), and only \
+                 files are read"
+            ),
+            2,
+        ));
+    }
+    Ok(file)
+}
+
+/// The rest of an open file's bytes, at most `limit`; `path` names it in messages.
+pub fn read_all(file: File, path: &Path, limit: u64) -> Result<Vec<u8>, Failure> {
+    let shown = legacy_rt::error::escaped(&path.display().to_string());
+    let mut bytes = Vec::new();
+    file.take(limit + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|error| Failure(format!("error: cannot read {shown}: {error}"), 2))?;
+    if bytes.len() as u64 > limit {
+        let mib = limit >> 20;
+        return Err(Failure(
+            format!("error: {shown} is larger than {mib} MiB"),
+            2,
+        ));
+    }
+    Ok(bytes)
+}
+
+/// Whether two names are one file: the same device and inode, so that a hard link, a
+/// symbolic link or another spelling of the path counts. A name that does not exist is
+/// no file.
+pub fn same_file(a: &Path, b: &Path) -> bool {
+    match (std::fs::metadata(a), std::fs::metadata(b)) {
+        #[cfg(unix)]
+        (Ok(a), Ok(b)) => {
+            use std::os::unix::fs::MetadataExt;
+            (a.dev(), a.ino()) == (b.dev(), b.ino())
+        }
+        #[cfg(not(unix))]
+        (Ok(_), Ok(_)) => match (a.canonicalize(), b.canonicalize()) {
+            (Ok(a), Ok(b)) => a == b,
+            _ => false,
+        },
+        _ => false,
     }
 }

@@ -3,7 +3,7 @@
 
 use super::io::{emit_to_stdout, read_scene};
 use super::render::{render_with_progress, write_image};
-use super::{Failure, HowArgs, output_file, pixels, size, usage};
+use super::{Failure, HowArgs, check_stdout, output_file, pixels, size, usage};
 use std::path::PathBuf;
 
 /// Examples for `trace --help`.
@@ -56,6 +56,7 @@ const MARK: [u8; 3] = [0, 255, 0];
 
 /// Traces the pixel of the scene on standard input.
 pub fn run(args: &TraceArgs) -> Result<(), Failure> {
+    check_stdout()?;
     let output = output_file(args.output.as_deref())?;
     args.how.check()?;
     let text = read_scene()?;

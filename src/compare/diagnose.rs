@@ -5,7 +5,7 @@
 //! than the reference does are listed, best first, and the best is tried together with
 //! each other variant.
 //! MAX_DIST is not guessed from a list: one render with long paths records each pixel's
-//! bytes after each mirror bounce that changes them ([`render::path_bytes`]), which gives
+//! bytes after each mirror bounce ([`render::path_agreement`]), which gives
 //! the image
 //! under every MAX_DIST at once, and the best D is read off ([`estimate_max_dist`]).
 
@@ -144,31 +144,19 @@ pub fn estimate_max_dist(
         max_dist: PROBE_LIMIT.max(options.max_dist),
         ..*options
     };
-    let paths = render::path_bytes(scene, &probe);
-    let within = |pixel: usize, bytes| pixel_difference(bytes, student.pixels[pixel]) <= levels;
-    // Each pixel's state under D = 0+ (the camera ray's segment only), then the changes
-    // as D passes each later segment's start.
-    let mut state: Vec<bool> = (paths.iter().enumerate())
-        .map(|(pixel, path)| {
-            path.first()
-                .is_some_and(|&(_, colour)| within(pixel, colour))
-        })
-        .collect();
+    let (mut state, changes) = render::path_agreement(scene, &probe, |pixel, bytes| {
+        pixel_difference(bytes, student.pixels[pixel]) <= levels
+    });
     let mut agreeing = state.iter().filter(|&&s| s).count();
-    let mut changes: Vec<(f64, usize, bool)> = (paths.iter().enumerate())
-        .flat_map(|(pixel, path)| {
-            (path.iter().skip(1)).map(move |&(start, colour)| (start, pixel, within(pixel, colour)))
-        })
-        .collect();
-    changes.sort_by(|a, b| a.0.total_cmp(&b.0));
     // Agreement on each interval [start, next start) of D.
     let mut intervals: Vec<(f64, usize)> = vec![(0.0, agreeing)];
-    for (start, pixel, agrees) in changes {
-        agreeing = agreeing + usize::from(agrees) - usize::from(state[pixel]);
-        state[pixel] = agrees;
+    for change in changes {
+        let pixel = change.pixel as usize;
+        agreeing = agreeing + usize::from(change.agrees) - usize::from(state[pixel]);
+        state[pixel] = change.agrees;
         match intervals.last_mut() {
-            Some(last) if last.0 == start => last.1 = agreeing,
-            _ => intervals.push((start, agreeing)),
+            Some(last) if last.0 == change.start => last.1 = agreeing,
+            _ => intervals.push((change.start, agreeing)),
         }
     }
     let end = |i: usize| intervals.get(i + 1).map_or(probe.max_dist, |next| next.0);

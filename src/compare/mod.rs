@@ -46,12 +46,26 @@ impl Default for Tolerance {
 
 /// Whether the images match within the tolerance.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "lowercase")]
+#[serde(rename_all = "kebab-case")]
 pub enum Verdict {
     /// At most `allow` of the pixels differ by more than `levels`.
     Match,
     /// More do.
     Differ,
+    /// The student's image is not of the size the grader fixed (`--size`): nothing was
+    /// compared.
+    WrongSize,
+}
+
+impl Verdict {
+    /// The verdict as the report and the JSON write it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Verdict::Match => "match",
+            Verdict::Differ => "differ",
+            Verdict::WrongSize => "wrong-size",
+        }
+    }
 }
 
 /// Two images of different sizes.
@@ -138,6 +152,10 @@ pub struct Report {
     /// reference does, best first.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub diagnosis: Option<Vec<Diagnosis>>,
+    /// The size the grader required (`--size W H`), when the student's image has
+    /// another: `[W, H]` with verdict `wrong-size`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub expected_size: Option<[usize; 2]>,
 }
 
 /// The largest channel difference of two pixels.
@@ -176,6 +194,27 @@ pub struct Settings {
     pub worst: usize,
     /// Whether to try the variants.
     pub diagnose: bool,
+}
+
+/// The report on a student's image of another size than the `expected` one: verdict
+/// [`Verdict::WrongSize`], nothing compared.
+pub fn wrong_size(student: &Image, expected: (usize, usize), settings: &Settings) -> Report {
+    Report {
+        verdict: Verdict::WrongSize,
+        width: student.width,
+        height: student.height,
+        pixels: 0,
+        tolerance: settings.tolerance.levels,
+        allow: settings.tolerance.allow,
+        differing_pixels: 0,
+        differing_fraction: 0.0,
+        max_channel_difference: 0,
+        mean_absolute_error: 0.0,
+        groups: Vec::new(),
+        worst: Vec::new(),
+        diagnosis: None,
+        expected_size: Some([expected.0, expected.1]),
+    }
 }
 
 /// The reference of `scene` under `options`, at the student image's size.
@@ -268,20 +307,21 @@ pub fn report(
         groups,
         worst,
         diagnosis,
+        expected_size: None,
     })
 }
 
 /// The pixels `differing` (output indices) counted by the object `hits` names there.
 fn group(
     scene: &Scene,
-    hits: &[Option<usize>],
+    hits: &[render::FirstHit],
     differing: impl Iterator<Item = usize>,
 ) -> Vec<Group> {
     let mut counts = vec![0usize; scene.objects.len() + 1];
     let background = scene.objects.len();
     let mut total = 0;
     for i in differing {
-        counts[hits[i].unwrap_or(background)] += 1;
+        counts[hits[i].index().unwrap_or(background)] += 1;
         total += 1;
     }
     let mut groups: Vec<Group> = (counts.iter().enumerate())

@@ -1,8 +1,24 @@
 //! Reading a student's image: binary and text PPM (P6, P3), as students' programs write
 //! them, and PNG. Told apart from a scene file by its first bytes, never by its name.
+//!
+//! The files come from students, so nothing in them is trusted. The header is read first
+//! and an image larger than the caller's pixel budget, grey, or of more than 8 bits per
+//! channel is refused before any pixel is decoded. The pixels are decoded straight into
+//! the image's own buffer (no second copy), a PNG palette the decoder would choke on is
+//! refused before it runs, and the third-party decoder runs behind a panic boundary
+//! (`guarded`): whatever else a damaged file does to it is an error, not the end of the
+//! process.
 
 use crate::render::Image;
-use image::{DynamicImage, ImageFormat};
+use image::codecs::png::PngDecoder;
+use image::codecs::pnm::PnmDecoder;
+use image::{ColorType, ImageDecoder, ImageError, Limits};
+use std::io::{BufRead, Cursor, Read, Seek, SeekFrom};
+
+/// The most pixels [`read_image`] decodes unless told otherwise: 4096 x 4096, larger than
+/// any image of the course and small enough that a grading machine can hold the image,
+/// its reference and what `compare --diagnose` keeps of it (docs/compare.md, "Limits").
+pub const DEFAULT_MAX_PIXELS: u64 = 4096 * 4096;
 
 /// What a file's first bytes say it is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -17,11 +33,12 @@ pub enum Content {
     Text,
 }
 
-/// Recognises an image by its signature.
+/// Recognises an image by its signature. A Netpbm magic number is followed by
+/// whitespace or by a `#` comment (the format allows one anywhere in the header).
 pub fn content(bytes: &[u8]) -> Content {
     const PNG: &[u8] = b"\x89PNG\r\n\x1a\n";
     match bytes {
-        [b'P', kind @ b'1'..=b'7', next, ..] if next.is_ascii_whitespace() => {
+        [b'P', kind @ b'1'..=b'7', next, ..] if next.is_ascii_whitespace() || *next == b'#' => {
             Content::Netpbm(*kind - b'0')
         }
         _ if bytes.starts_with(PNG) => Content::Png,
@@ -62,64 +79,224 @@ pub enum ReadError {
     /// Transparent pixels, which have no single colour to compare.
     #[error("a PNG with transparent pixels; the course's images are opaque RGB")]
     Transparent,
+    /// A header that announces more pixels than the budget, found before decoding.
+    #[error("a {width}x{height} image, more than the {max_pixels} pixels allowed")]
+    TooLarge {
+        /// The width the header gives.
+        width: u32,
+        /// The height the header gives.
+        height: u32,
+        /// The budget.
+        max_pixels: u64,
+    },
+    /// A file the decoder could not survive, or one known to break it.
+    #[error("the image is damaged ({0})")]
+    Damaged(String),
     /// The decoder's complaint: a truncated file, a bad header.
     #[error("{0}")]
     Broken(String),
 }
 
-/// Decodes a P3, P6 or PNG image into rows top to bottom, 8-bit RGB.
+/// Decodes a P3, P6 or PNG image held in memory, of at most [`DEFAULT_MAX_PIXELS`].
 pub fn read_image(bytes: &[u8]) -> Result<Image, ReadError> {
-    let format = match content(bytes) {
-        Content::Netpbm(3 | 6) => ImageFormat::Pnm,
+    read_image_from(Cursor::new(bytes), DEFAULT_MAX_PIXELS)
+}
+
+/// Decodes a P3, P6 or PNG image from `reader` into rows top to bottom, 8-bit RGB; an
+/// image of more than `max_pixels` pixels is refused from its header.
+pub fn read_image_from(
+    mut reader: impl BufRead + Seek,
+    max_pixels: u64,
+) -> Result<Image, ReadError> {
+    let mut start = [0u8; 16];
+    let seen = read_up_to(&mut reader, &mut start).map_err(broken)?;
+    let rewind = |reader: &mut dyn SeekRead| reader.seek(SeekFrom::Start(0)).map_err(broken);
+    match content(&start[..seen]) {
+        Content::Netpbm(3 | 6) => {
+            rewind(&mut reader)?;
+            let decoder = guarded(|| PnmDecoder::new(reader))?.map_err(decoding)?;
+            decode(decoder, max_pixels)
+        }
         Content::Netpbm(kind) => {
             let name = match kind {
                 1 | 4 => "black-and-white PBM",
                 2 | 5 => "grey PGM",
                 _ => "PAM",
             };
-            return Err(ReadError::NotPpm(name, kind));
+            Err(ReadError::NotPpm(name, kind))
         }
-        Content::Png => ImageFormat::Png,
-        Content::OtherImage(name) => return Err(ReadError::Unsupported(name)),
-        Content::Text => return Err(ReadError::NotAnImage),
-    };
-    let decoded = image::load_from_memory_with_format(bytes, format).map_err(|error| {
-        let message = error.to_string();
-        ReadError::Broken(
-            match message.contains("end of file") || message.contains("EOF") {
-                true => format!("the image is cut short ({message})"),
-                false => message,
-            },
-        )
-    })?;
-    let rgb = match decoded {
-        DynamicImage::ImageRgb8(rgb) => rgb,
-        DynamicImage::ImageRgba8(rgba) => {
-            if rgba.pixels().any(|p| p.0[3] != 255) {
+        Content::Png => {
+            rewind(&mut reader)?;
+            check_palette(&mut reader)?;
+            rewind(&mut reader)?;
+            let limits = decoder_limits(max_pixels);
+            let decoder = guarded(|| PngDecoder::with_limits(reader, limits))?.map_err(decoding)?;
+            decode(decoder, max_pixels)
+        }
+        Content::OtherImage(name) => Err(ReadError::Unsupported(name)),
+        Content::Text => Err(ReadError::NotAnImage),
+    }
+}
+
+/// A reader that can be rewound, as a trait object.
+trait SeekRead: Read + Seek {}
+impl<T: Read + Seek> SeekRead for T {}
+
+/// Fills `buffer` from `reader` as far as the file goes; the count read.
+fn read_up_to(reader: &mut impl Read, buffer: &mut [u8]) -> std::io::Result<usize> {
+    let mut filled = 0;
+    while filled < buffer.len() {
+        match reader.read(&mut buffer[filled..]) {
+            Ok(0) => break,
+            Ok(n) => filled += n,
+            Err(error) if error.kind() == std::io::ErrorKind::Interrupted => {}
+            Err(error) => return Err(error),
+        }
+    }
+    Ok(filled)
+}
+
+/// What the PNG decoder may allocate besides the image: its rows, its chunks' buffers.
+/// Bounded, so that a small file cannot ask it for gigabytes of metadata.
+fn decoder_limits(max_pixels: u64) -> Limits {
+    let mut limits = Limits::default();
+    limits.max_alloc = Some(max_pixels.saturating_mul(8).saturating_add(64 << 20));
+    limits
+}
+
+/// The PNG decoder (png 0.18.1, the newest release) panics when a palette's length is not
+/// a multiple of 3 (image-rs/image-png issue 694): such a file is refused before it is
+/// decoded. The chunks before the first IDAT are walked by their lengths.
+fn check_palette(reader: &mut impl Read) -> Result<(), ReadError> {
+    let mut signature = [0u8; 8];
+    reader.read_exact(&mut signature).map_err(broken)?;
+    loop {
+        let mut head = [0u8; 8];
+        if read_up_to(reader, &mut head).map_err(broken)? < 8 {
+            return Ok(()); // cut short: the decoder says so
+        }
+        let length = u32::from_be_bytes([head[0], head[1], head[2], head[3]]);
+        match &head[4..] {
+            b"IDAT" | b"IEND" => return Ok(()),
+            b"PLTE" if length % 3 != 0 || length == 0 => {
+                return Err(ReadError::Damaged(format!(
+                    "its palette is {length} bytes long, not 3 bytes per colour"
+                )));
+            }
+            _ => {
+                // The chunk's data and its CRC.
+                let skip = u64::from(length) + 4;
+                if std::io::copy(&mut reader.take(skip), &mut std::io::sink()).map_err(broken)?
+                    < skip
+                {
+                    return Ok(());
+                }
+            }
+        }
+    }
+}
+
+/// Decodes the pixels of `decoder` once its header has passed: at most `max_pixels`
+/// pixels, 8-bit RGB or opaque RGBA.
+fn decode(decoder: impl ImageDecoder, max_pixels: u64) -> Result<Image, ReadError> {
+    let (width, height) = decoder.dimensions();
+    if u64::from(width) * u64::from(height) > max_pixels {
+        return Err(ReadError::TooLarge {
+            width,
+            height,
+            max_pixels,
+        });
+    }
+    let (w, h) = (width as usize, height as usize);
+    let pixels = match decoder.color_type() {
+        ColorType::Rgb8 => {
+            let mut pixels = vec![[0u8; 3]; w * h];
+            guarded(|| decoder.read_image(pixels.as_flattened_mut()))?.map_err(decoding)?;
+            pixels
+        }
+        ColorType::Rgba8 => {
+            let mut rgba = vec![0u8; 4 * w * h];
+            guarded(|| decoder.read_image(&mut rgba))?.map_err(decoding)?;
+            if rgba.chunks_exact(4).any(|p| p[3] != 255) {
                 return Err(ReadError::Transparent);
             }
-            DynamicImage::ImageRgba8(rgba).to_rgb8()
+            rgba.chunks_exact(4).map(|p| [p[0], p[1], p[2]]).collect()
         }
-        DynamicImage::ImageLuma8(_) | DynamicImage::ImageLumaA8(_) => return Err(ReadError::Grey),
-        DynamicImage::ImageLuma16(_) | DynamicImage::ImageLumaA16(_) => {
+        ColorType::L8 | ColorType::La8 | ColorType::L16 | ColorType::La16 => {
             return Err(ReadError::Grey);
         }
         _ => return Err(ReadError::SixteenBit),
     };
-    let (width, height) = (rgb.width() as usize, rgb.height() as usize);
-    let pixels = rgb.pixels().map(|p| p.0).collect();
     Ok(Image {
-        width,
-        height,
+        width: w,
+        height: h,
         pixels,
     })
 }
 
-/// The image in a file's `bytes`, or the message `legacy-rt compare` gives: `shown` names
-/// the file and `role` what it is ("student's image" or "reference image").
-pub fn image_named(bytes: &[u8], shown: &str, role: &str) -> Result<Image, String> {
-    if content(bytes) == Content::Text && role == "student's image" {
-        let hint = match bytes.first() {
+/// A reading error as the decoder's complaint.
+fn broken(error: std::io::Error) -> ReadError {
+    decoding(ImageError::IoError(error))
+}
+
+/// The decoder's error in words, saying "cut short" for a truncated file.
+fn decoding(error: ImageError) -> ReadError {
+    let message = error.to_string();
+    ReadError::Broken(
+        match message.contains("end of file") || message.contains("EOF") {
+            true => format!("the image is cut short ({message})"),
+            false => message,
+        },
+    )
+}
+
+/// Runs the third-party decoder: a panic in it becomes [`ReadError::Damaged`], and its
+/// message is not printed (the panic hook stays quiet for this thread while it runs).
+/// Where panics abort (the WebAssembly build) this cannot help, and the checks before
+/// decoding are what keep the known crashes out.
+pub(crate) fn guarded<T>(decode: impl FnOnce() -> T) -> Result<T, ReadError> {
+    use std::cell::Cell;
+    use std::panic::{AssertUnwindSafe, catch_unwind};
+    thread_local! {
+        static QUIET: Cell<bool> = const { Cell::new(false) };
+    }
+    static HOOK: std::sync::Once = std::sync::Once::new();
+    HOOK.call_once(|| {
+        let previous = std::panic::take_hook();
+        std::panic::set_hook(Box::new(move |info| {
+            if !QUIET.with(Cell::get) {
+                previous(info);
+            }
+        }));
+    });
+    let was = QUIET.with(|quiet| quiet.replace(true));
+    let result = catch_unwind(AssertUnwindSafe(decode));
+    QUIET.with(|quiet| quiet.set(was));
+    result.map_err(|panic| {
+        let what = (panic.downcast_ref::<&str>().map(|s| s.to_string()))
+            .or_else(|| panic.downcast_ref::<String>().cloned())
+            .unwrap_or_default();
+        ReadError::Damaged(match what.is_empty() {
+            true => "the decoder failed on it".to_string(),
+            false => format!("the decoder failed on it: {what}"),
+        })
+    })
+}
+
+/// The image in `reader`, or the message `legacy-rt compare` gives: `shown` names the
+/// file and `role` what it is ("student's image" or "reference image").
+pub fn image_named(
+    mut reader: impl BufRead + Seek,
+    max_pixels: u64,
+    shown: &str,
+    role: &str,
+) -> Result<Image, String> {
+    let mut start = [0u8; 16];
+    let seen = read_up_to(&mut reader, &mut start).unwrap_or(0);
+    let _ = reader.seek(SeekFrom::Start(0));
+    let first = &start[..seen];
+    if content(first) == Content::Text && role == "student's image" {
+        let hint = match first.first() {
             Some(b'0'..=b'9' | b'-' | b'+' | b'.') => {
                 ": it looks like a scene file; the scene comes first, the image second"
             }
@@ -129,7 +306,13 @@ pub fn image_named(bytes: &[u8], shown: &str, role: &str) -> Result<Image, Strin
             "error: {shown} (the {role}) is not a PPM or PNG image{hint}"
         ));
     }
-    read_image(bytes).map_err(|error| format!("error: {shown} (the {role}): {error}"))
+    read_image_from(reader, max_pixels).map_err(|error| {
+        let hint = match error {
+            ReadError::TooLarge { .. } => " (--max-pixels raises the limit)",
+            _ => "",
+        };
+        format!("error: {shown} (the {role}): {error}{hint}")
+    })
 }
 
 #[cfg(test)]
@@ -148,6 +331,14 @@ mod tests {
         assert_eq!((a.width, a.height), (2, 1));
         assert_eq!(pixels(&a), vec![[255, 0, 0], [0, 128, 255]]);
         assert_eq!(pixels(&a), pixels(&b));
+    }
+
+    #[test]
+    fn a_comment_may_follow_the_magic_number() {
+        // Netpbm allows a comment anywhere before the raster, right after "P3" too.
+        let text = b"P3#made by hand\n1 1\n255\n1 2 3\n";
+        assert_eq!(content(text), Content::Netpbm(3));
+        assert_eq!(pixels(&read_image(text).unwrap()), vec![[1, 2, 3]]);
     }
 
     #[test]
@@ -171,6 +362,23 @@ mod tests {
     }
 
     #[test]
+    fn a_header_over_the_budget_is_refused_before_decoding() {
+        // A 13000x13000 P6 with no pixels at all: refused by its header, not cut short.
+        let huge = b"P6 13000 13000 255\n";
+        assert_eq!(
+            read_image(huge),
+            Err(ReadError::TooLarge {
+                width: 13000,
+                height: 13000,
+                max_pixels: DEFAULT_MAX_PIXELS
+            })
+        );
+        // Within a larger budget the same header is read, and the missing pixels found.
+        let cut = read_image_from(Cursor::new(&huge[..]), 13000 * 13000);
+        assert!(matches!(cut, Err(ReadError::Broken(_))), "{cut:?}");
+    }
+
+    #[test]
     fn a_png_reads_back_as_written() {
         let image = Image {
             width: 2,
@@ -180,5 +388,17 @@ mod tests {
         let png = crate::image_output::png(&image).unwrap();
         assert_eq!(content(&png), Content::Png);
         assert_eq!(read_image(&png), Ok(image));
+    }
+
+    #[test]
+    fn a_panic_in_the_decoder_is_an_error() {
+        let damaged = guarded(|| -> u8 { panic!("index out of range") });
+        assert_eq!(
+            damaged,
+            Err(ReadError::Damaged(
+                "the decoder failed on it: index out of range".into()
+            ))
+        );
+        assert_eq!(guarded(|| 7), Ok(7));
     }
 }

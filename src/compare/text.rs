@@ -5,13 +5,32 @@ use super::{Report, Verdict};
 use crate::Options;
 use crate::render::{Choices, Variant};
 
-/// `path` as a shell word: as it is when it needs no quoting.
+/// `path` as a shell word: as it is when it needs no quoting, in single quotes when it
+/// does, and in the `$'…'` quotes of bash and zsh, with escapes, when it holds a control
+/// or invisible character (a newline or an escape code would otherwise act on the
+/// terminal or start a line of its own in the report).
 fn shell_word(path: &str) -> String {
     let plain = |c: char| c.is_ascii_alphanumeric() || "_./-+,:=@%".contains(c);
     if !path.is_empty() && path.chars().all(plain) {
         return path.to_string();
     }
-    format!("'{}'", path.replace('\'', r"'\''"))
+    let escaped = crate::error::escaped(path);
+    if escaped == path {
+        return format!("'{}'", path.replace('\'', r"'\''"));
+    }
+    let mut word = String::from("$'");
+    for c in path.chars() {
+        match c {
+            '\\' => word.push_str("\\\\"),
+            '\'' => word.push_str("\\'"),
+            c if crate::error::escaped(&c.to_string()) != c.to_string() => {
+                word.push_str(&format!("\\U{:08x}", u32::from(c)));
+            }
+            c => word.push(c),
+        }
+    }
+    word.push('\'');
+    word
 }
 
 /// The `trace` command that explains pixel (x, y) of the reference rendered from the
@@ -81,7 +100,8 @@ pub fn text(report: &Report, reference: &str, student: &str, choices: Option<&Ch
         let _ = writeln!(out, "{text}");
     };
     let (w, h) = (report.width, report.height);
-    match choices {
+    // Of an image of the wrong size no reference was rendered.
+    match choices.filter(|_| report.verdict != Verdict::WrongSize) {
         Some(choices) => {
             let flags = choices.flags();
             let how = match flags.is_empty() {
@@ -93,6 +113,13 @@ pub fn text(report: &Report, reference: &str, student: &str, choices: Option<&Ch
         None => line(format!("reference: {reference}")),
     }
     line(format!("student:   {student}"));
+    if let (Verdict::WrongSize, Some([ew, eh])) = (report.verdict, report.expected_size) {
+        line(format!(
+            "size: {w}x{h}, but the image must be {ew}x{eh} (--size): nothing compared"
+        ));
+        line(format!("verdict: {}", report.verdict.name()));
+        return out;
+    }
     line(format!(
         "size: {w}x{h}, {} pixels compared",
         thousands(report.pixels)
@@ -112,11 +139,7 @@ pub fn text(report: &Report, reference: &str, student: &str, choices: Option<&Ch
         "mean absolute error: {:.3} levels per channel",
         report.mean_absolute_error
     ));
-    let verdict = match report.verdict {
-        Verdict::Match => "match",
-        Verdict::Differ => "differ",
-    };
-    line(format!("verdict: {verdict}"));
+    line(format!("verdict: {}", report.verdict.name()));
     if !report.groups.is_empty() {
         line(String::new());
         line("differing pixels by what the reference ray hits first:".to_string());

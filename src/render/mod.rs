@@ -339,11 +339,12 @@ fn on_a_pool<T: Send>(
 }
 
 /// `per_pixel` of every camera ray (`None` where the eye is the pixel's world point),
-/// in output order (rows top to bottom, spec §4.1), on `options.threads` threads.
+/// in output order (rows top to bottom, spec §4.1), on `options.threads` threads;
+/// `per_pixel` is also told the pixel's output index.
 fn map_pixels<T: Send + Clone + Default>(
     scene: &Scene,
     options: &Options,
-    per_pixel: impl Fn(Option<Ray>, &mut Stats) -> T + Sync,
+    per_pixel: impl Fn(usize, Option<Ray>, &mut Stats) -> T + Sync,
 ) -> Vec<T> {
     let camera = Camera::new(scene, options);
     let mut pixels = vec![T::default(); options.width * options.height];
@@ -352,7 +353,7 @@ fn map_pixels<T: Send + Clone + Default>(
         // Output row r holds pixel row y = H - 1 - r, the same map both ways.
         let y = options.row_of(row);
         for (x, pixel) in out.iter_mut().enumerate() {
-            *pixel = per_pixel(camera.ray(x, y), &mut stats);
+            *pixel = per_pixel(row * options.width + x, camera.ray(x, y), &mut stats);
         }
         stats
     };
@@ -360,19 +361,35 @@ fn map_pixels<T: Send + Clone + Default>(
     pixels
 }
 
-/// The object each camera ray hits first (spec §4.6), in output order; `None` for the
-/// background.
-pub fn first_hits(scene: &Scene, options: &Options) -> Vec<Option<usize>> {
+/// The object a camera ray hits first, in 4 bytes (a pixel of a 4096x4096 reference
+/// keeps one): its index plus one, or nothing for the background.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct FirstHit(Option<std::num::NonZeroU32>);
+
+impl FirstHit {
+    /// The object's index among the scene's objects, `None` for the background.
+    pub fn index(self) -> Option<usize> {
+        self.0.map(|n| n.get() as usize - 1)
+    }
+
+    fn of(index: Option<usize>) -> FirstHit {
+        // A scene holds at most 1,000,000 records, so index + 1 fits.
+        FirstHit(index.and_then(|i| std::num::NonZeroU32::new(i as u32 + 1)))
+    }
+}
+
+/// The object each camera ray hits first (spec §4.6), in output order.
+pub fn first_hits(scene: &Scene, options: &Options) -> Vec<FirstHit> {
     struct Job<'a>(&'a Scene, &'a Options);
     impl WithTracer for Job<'_> {
-        type Output = Vec<Option<usize>>;
+        type Output = Vec<FirstHit>;
         fn run<K: Kernel, V: Rules>(self) -> Self::Output {
             let Job(scene, options) = self;
             let scene = options.deviations.scene(scene);
             let tracer = Tracer::<K, V>::new(&scene, options);
-            let first = |ray: Option<Ray>, _: &mut Stats| {
-                let (index, _) = tracer.closest_hit(&ray?, None, None, &mut ())?;
-                Some(index)
+            let first = |_, ray: Option<Ray>, _: &mut Stats| {
+                let hit = ray.and_then(|ray| tracer.closest_hit(&ray, None, None, &mut ()));
+                FirstHit::of(hit.map(|(index, _)| index))
             };
             map_pixels(&scene, options, first)
         }
@@ -380,48 +397,44 @@ pub fn first_hits(scene: &Scene, options: &Options) -> Vec<Option<usize>> {
     dispatch(options, Job(scene, options))
 }
 
-/// One pixel's bytes for every MAX_DIST: `(start, bytes)` where the pixel's bytes change
-/// along its path (the camera ray first, then each mirror bounce): `start` is the path's
-/// length where a segment starts and `bytes` the pixel with that segment added (under the
-/// options' byte rule). Under MAX_DIST D the pixel is the `bytes` of the last entry with
-/// start <= D (spec §4.2 step 1). Segments that change no byte (deep bounces between two
-/// mirrors) are left out, which keeps the list short.
-pub type PathBytes = Vec<(f64, [u8; 3])>;
+/// Where a pixel's bytes change as MAX_DIST grows: once D reaches `start` (where a
+/// segment of the pixel's path starts), the pixel's bytes are those with that segment
+/// added, and they agree with the student's or not.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PathChange {
+    /// The path's length where the segment starts.
+    pub start: f64,
+    /// The pixel's output index.
+    pub pixel: u32,
+    /// Whether the bytes from there on agree.
+    pub agrees: bool,
+}
 
-/// [`PathBytes`] of every pixel, in output order, for paths up to `options.max_dist`: the
-/// image under every smaller MAX_DIST at the cost of one render.
-pub fn path_bytes(scene: &Scene, options: &Options) -> Vec<PathBytes> {
-    /// Keeps each segment's start and the colour after it, dropping a segment as soon as
-    /// it is known to change no byte.
-    struct Path {
-        entries: Vec<(f64, DVec3)>,
-        bytes: variant::Bytes,
-    }
-    impl Path {
-        fn to_bytes(&self, colour: DVec3) -> [u8; 3] {
-            colour.to_array().map(|c| self.bytes.byte(c))
-        }
-        /// Drops the last entry if it changed no byte of the one before.
-        fn settle(&mut self) {
-            if let [.., (_, before), (_, last)] = self.entries[..]
-                && self.to_bytes(before) == self.to_bytes(last)
-            {
-                self.entries.pop();
-            }
-        }
-    }
+/// The image under every MAX_DIST up to `options.max_dist` at the cost of one render, as
+/// far as `agrees(pixel, bytes)` tells: per pixel (output order) whether its bytes agree
+/// under the smallest MAX_DIST (the camera ray's segment alone), and every change of
+/// every change of its bytes as D grows, sorted by D (spec §4.2 step 1: under MAX_DIST
+/// D a pixel has the bytes after the last segment starting at D or less). Only changes
+/// are kept, so the memory grows with the mirror bounces that change a byte, not with
+/// the image.
+pub fn path_agreement(
+    scene: &Scene,
+    options: &Options,
+    agrees: impl Fn(usize, [u8; 3]) -> bool + Sync,
+) -> (Vec<bool>, Vec<PathChange>) {
+    /// Each segment's start and the colour after it.
+    struct Path(Vec<(f64, DVec3)>);
     impl Recorder for Path {
         const ENABLED: bool = true;
         const EVERY_TEST: bool = false;
         fn record(&mut self, event: impl FnOnce() -> Event) {
             match event() {
                 Event::Segment { total_dist, .. } => {
-                    self.settle();
-                    let colour = self.entries.last().map_or(DVec3::ZERO, |&(_, c)| c);
-                    self.entries.push((total_dist, colour));
+                    let colour = self.0.last().map_or(DVec3::ZERO, |&(_, c)| c);
+                    self.0.push((total_dist, colour));
                 }
                 Event::Divided { colour, .. } => {
-                    if let Some(last) = self.entries.last_mut() {
+                    if let Some(last) = self.0.last_mut() {
                         last.1 = colour;
                     }
                 }
@@ -429,35 +442,54 @@ pub fn path_bytes(scene: &Scene, options: &Options) -> Vec<PathBytes> {
             }
         }
     }
-    struct Job<'a>(&'a Scene, &'a Options);
-    impl WithTracer for Job<'_> {
-        type Output = Vec<PathBytes>;
+    struct Job<'a, A>(&'a Scene, &'a Options, A);
+    impl<A: Fn(usize, [u8; 3]) -> bool + Sync> WithTracer for Job<'_, A> {
+        type Output = (Vec<bool>, Vec<PathChange>);
         fn run<K: Kernel, V: Rules>(self) -> Self::Output {
-            let Job(scene, options) = self;
+            let Job(scene, options, agrees) = self;
             let scene = options.deviations.scene(scene);
             let tracer = Tracer::<K, V>::new(&scene, options);
-            let path = |ray: Option<Ray>, stats: &mut Stats| {
-                let bytes = options.deviations.bytes;
-                let mut path = Path {
-                    entries: vec![],
-                    bytes,
-                };
-                match ray {
-                    Some(ray) => {
-                        tracer.trace(ray, None, stats, &mut path);
-                        path.settle();
-                    }
-                    None => path.entries.push((0.0, DVec3::ZERO)),
+            let changes = std::sync::Mutex::new(Vec::new());
+            let path = |pixel: usize, ray: Option<Ray>, stats: &mut Stats| {
+                let mut path = Path(Vec::new());
+                if let Some(ray) = ray {
+                    tracer.trace(ray, None, stats, &mut path);
                 }
-                let entries = path.entries.iter();
-                entries
-                    .map(|&(start, c)| (start, path.to_bytes(c)))
-                    .collect()
+                let bytes =
+                    |colour: DVec3| colour.to_array().map(|c| options.deviations.bytes.byte(c));
+                let mut entries = path.0.iter();
+                let first = entries.next().map_or(DVec3::ZERO, |&(_, c)| c);
+                let mut last = bytes(first);
+                let mut mine = Vec::new();
+                // Segments that change no byte (deep bounces between two mirrors) are
+                // left out: D passing them gives the same image.
+                for &(start, colour) in entries {
+                    let now = bytes(colour);
+                    if now != last {
+                        mine.push(PathChange {
+                            start,
+                            pixel: pixel as u32,
+                            agrees: agrees(pixel, now),
+                        });
+                        last = now;
+                    }
+                }
+                if !mine.is_empty()
+                    && let Ok(mut changes) = changes.lock()
+                {
+                    changes.extend(mine);
+                }
+                agrees(pixel, bytes(first))
             };
-            map_pixels(&scene, options, path)
+            let first = map_pixels(&scene, options, path);
+            let mut changes = changes.into_inner().unwrap_or_default();
+            // By D, then by pixel; a pixel's own changes were pushed in path order and
+            // the sort is stable, so they stay in that order.
+            changes.sort_by(|a, b| a.start.total_cmp(&b.start).then(a.pixel.cmp(&b.pixel)));
+            (first, changes)
         }
     }
-    dispatch(options, Job(scene, options))
+    dispatch(options, Job(scene, options, agrees))
 }
 
 /// The colour seen along one ray from the eye (spec §4.2 with total_dist = 0 and no
@@ -499,7 +531,7 @@ impl<'a, K: Kernel, V: Rules> Tracer<'a, K, V> {
             last_pixel: DVec2::new((options.width - 1) as f64, (options.height - 1) as f64),
             window: scene.window,
         };
-        let boxes = Boxes::new(scene);
+        let boxes = Boxes::for_kernel(scene, options.kernel);
         Tracer {
             scene,
             bvh: (options.accelerate)

@@ -391,7 +391,7 @@ mod tests {
     use super::*;
     use crate::render::{Camera, Deviations, Options};
     use crate::shapes::Ray;
-    use crate::shapes::kernel::{Accurate, Kernel, TextbookF32};
+    use crate::shapes::kernel::{Accurate, Kernel, KernelChoice, TextbookF32};
     use crate::shapes::testing::Numbers;
 
     /// A random point within `reach` of the origin on each axis, as a scene file writes it.
@@ -499,35 +499,53 @@ mod tests {
                     ..Options::new(41, 30)
                 };
                 let camera = Camera::new(&scene, &options);
-                let boxes = Boxes::new(&scene);
-                let Some(tiles) =
-                    Tiles::new(&scene, &boxes, camera.viewpoint, &camera.xs, &camera.ys)
+                // Each kernel with the boxes the renderer gives it.
+                let boxes = Boxes::for_kernel(&scene, KernelChoice::Accurate);
+                let f32_boxes = Boxes::for_kernel(&scene, KernelChoice::TextbookF32);
+                let tiles_of =
+                    |boxes| Tiles::new(&scene, boxes, camera.viewpoint, &camera.xs, &camera.ys);
+                let (Some(tiles), Some(f32_tiles)) = (tiles_of(&boxes), tiles_of(&f32_boxes))
                 else {
                     continue;
                 };
                 for y in 0..30 {
                     for x in 0..41 {
-                        let (Some(tile), Some(ray)) = (tiles.at(x, y), camera.ray(x, y)) else {
+                        let Some(ray) = camera.ray(x, y) else {
+                            continue;
+                        };
+                        let every = || 0..scene.objects.len();
+                        if let Some(tile) = f32_tiles.at(x, y) {
+                            let list = tile.objects;
+                            let listed = list.iter().map(|&i| i as usize);
+                            assert_eq!(
+                                closest::<TextbookF32>(&scene, &f32_boxes, listed, &ray),
+                                closest::<TextbookF32>(&scene, &f32_boxes, every(), &ray),
+                                "eye {eye}, pixel ({x}, {y}), f32"
+                            );
+                            let left_out = every().filter(|&i| !list.contains(&(i as u32)));
+                            for index in left_out.filter(|_| !planes) {
+                                let alone = [index].into_iter();
+                                assert_eq!(
+                                    closest::<TextbookF32>(&scene, &f32_boxes, alone, &ray),
+                                    None,
+                                    "eye {eye}, pixel ({x}, {y}): object {index} left out, f32"
+                                );
+                            }
+                        }
+                        let Some(tile) = tiles.at(x, y) else {
                             continue;
                         };
                         let list = tile.objects;
                         kept += 1;
                         let listed = || list.iter().map(|&i| i as usize);
-                        let every = || 0..scene.objects.len();
                         assert_eq!(
                             closest::<Accurate>(&scene, &boxes, listed(), &ray),
                             closest::<Accurate>(&scene, &boxes, every(), &ray),
                             "eye {eye}, pixel ({x}, {y})"
                         );
-                        assert_eq!(
-                            closest::<TextbookF32>(&scene, &boxes, listed(), &ray),
-                            closest::<TextbookF32>(&scene, &boxes, every(), &ray),
-                            "eye {eye}, pixel ({x}, {y}), f32"
-                        );
                         for index in every().filter(|&i| !list.contains(&(i as u32))) {
                             let alone = || [index].into_iter();
-                            let hit = closest::<Accurate>(&scene, &boxes, alone(), &ray)
-                                .or(closest::<TextbookF32>(&scene, &boxes, alone(), &ray));
+                            let hit = closest::<Accurate>(&scene, &boxes, alone(), &ray);
                             match hit {
                                 Some(_) if !planes => {
                                     panic!("eye {eye}, pixel ({x}, {y}): object {index} left out")

@@ -591,7 +591,8 @@ impl Trace {
 
     /// The trace as the course's `-DDBG_PIX -DDBG_WRL -DDBG_FND -DDBG_HIT -DDBG_AMB` and
     /// diffuse debug output printed it (`%4d`, `%5.1lf`, `%8.3f`), with the course's
-    /// object ids: one counter over lights and objects in file order, from 0 (spec §7.1).
+    /// object ids: one counter over lights and objects in file order, from 0 (spec §7.1);
+    /// then, as every trace ends, `bytes: R G B`.
     pub fn course(&self, scene: &Scene) -> String {
         let ids = CourseIds::new(scene);
         let mut out = String::new();
@@ -681,6 +682,10 @@ impl Trace {
             }
         }
         out.push('\n');
+        // Not a line the course printed: the bytes that every trace ends with, so that
+        // both formats end on the pixel's bytes in the image.
+        let [r, g, b] = self.bytes;
+        let _ = writeln!(out, "bytes: {r} {g} {b}");
         out
     }
 }

@@ -188,21 +188,19 @@ fn fenced_blocks_are_found_by_tag() {
 
 #[test]
 fn the_readme_s_trace_example_is_what_the_program_prints() {
-    let Some(dir) = super::common::course_scenes() else {
-        return;
-    };
     let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
     let start = readme
         .find("When no variant explains it, trace a pixel")
         .unwrap();
     let section = &readme[start..];
     let section = &section[..section.find("\n### ").unwrap()];
-    let scene = std::fs::read(dir.join("spec1.txt")).unwrap();
-    let output = super::common::run(&["trace", "250", "160"], &scene);
-    let trace = String::from_utf8(output.stdout).unwrap();
-    let lines: Vec<&str> = trace.lines().collect();
     let blocks = fenced_blocks(section, "text");
     assert!(blocks.len() >= 4, "{blocks:?}");
+    assert_eq!(blocks[0], "legacy-rt trace 410 175 < examples/studio.txt\n");
+    let scene = std::fs::read(root().join("examples/studio.txt")).unwrap();
+    let output = super::common::run(&["trace", "410", "175"], &scene);
+    let trace = String::from_utf8(output.stdout).unwrap();
+    let lines: Vec<&str> = trace.lines().collect();
     for block in &blocks[1..] {
         for line in block.lines() {
             assert!(
@@ -215,18 +213,18 @@ fn the_readme_s_trace_example_is_what_the_program_prints() {
 
 #[test]
 fn the_readme_s_compare_example_is_what_the_program_prints() {
-    let Some(dir) = super::common::course_scenes() else {
-        return;
-    };
     let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
     let start = readme.find("### When your image differs").unwrap();
     let end = readme
         .find("When no variant explains it, trace a pixel")
         .unwrap();
     let blocks = fenced_blocks(&readme[start..end], "text");
-    // The student's image: d04 without shadow rays, 160x120, as the README's trace
-    // commands say.
-    let scene = std::fs::read(dir.join("d04.txt")).unwrap();
+    assert_eq!(blocks.len(), 2, "{blocks:?}");
+    let command = "legacy-rt compare --diagnose --diff diff.png examples/shadows.txt mine.ppm\n";
+    assert_eq!(blocks[0], command);
+    // The student's image: the scene without shadow rays, 160x120, as the README's trace
+    // commands say, named as the README names it, from the repository's folder.
+    let scene = std::fs::read(root().join("examples/shadows.txt")).unwrap();
     let folder = super::common::folder("readme-compare");
     let mine = folder.join("mine.ppm");
     let mine = mine.to_str().unwrap();
@@ -237,16 +235,55 @@ fn the_readme_s_compare_example_is_what_the_program_prints() {
     assert!(output.status.success());
     let diff = folder.join("diff.png");
     let args = ["compare", "--diagnose", "--diff", diff.to_str().unwrap()];
-    let d04 = "../shared/course-scenes/d04.txt";
-    let output = super::common::run(&[&args[..], &[d04, mine]].concat(), b"");
+    let output = super::common::run(&[&args[..], &["examples/shadows.txt", mine]].concat(), b"");
     assert_eq!(output.status.code(), Some(1));
     let report = String::from_utf8(output.stdout).unwrap();
     let lines: Vec<&str> = report.lines().collect();
-    assert_eq!(blocks.len(), 2, "{blocks:?}");
     for line in blocks[1].lines().filter(|line| line.trim() != "...") {
         assert!(
             lines.contains(&line),
             "README: `{line}` is not in the report:\n{report}"
         );
     }
+}
+
+/// Every command of the README that a reader may copy names the repository's own files:
+/// a student who cloned only the repository has no `../shared` (the course's material
+/// is named where the README says what the tests read, not in a command).
+#[test]
+fn the_readme_s_commands_need_nothing_beside_the_repository() {
+    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
+    let mut commands: Vec<String> = ["text", "sh"]
+        .iter()
+        .flat_map(|tag| fenced_blocks(&readme, tag))
+        .flat_map(|block| block.lines().map(str::to_string).collect::<Vec<_>>())
+        .collect();
+    // Commands quoted inline: `legacy-rt ...`.
+    commands.extend(
+        readme
+            .split('`')
+            .skip(1)
+            .step_by(2)
+            .filter(|code| code.starts_with("legacy-rt ") || code.starts_with("cargo "))
+            .map(str::to_string),
+    );
+    let mut scenes = 0;
+    for command in &commands {
+        assert!(
+            !command.contains("../shared"),
+            "README: `{command}` needs ../shared, which a clone does not have"
+        );
+        // Every scene file a command reads from the repository exists.
+        for word in command.split_whitespace() {
+            let word = word.trim_matches(|c| c == '"' || c == '\'');
+            if word.starts_with("examples/") && word.ends_with(".txt") {
+                assert!(root().join(word).is_file(), "README names {word}");
+                scenes += 1;
+            }
+        }
+    }
+    assert!(
+        scenes >= 5,
+        "{scenes} scene files named by the README's commands"
+    );
 }

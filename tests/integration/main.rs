@@ -1,4 +1,4 @@
-//! The integration tests, linked into one binary (STYLE.md: one binary is cheaper to build
+//! The integration tests, linked into one binary (../shared/STYLE.md: one binary is cheaper to build
 //! and link on a 2-core CI than one per file).
 
 // The hard-case suite: the shipped kernel within 4 ulps, the textbook formula not.
@@ -35,3 +35,5 @@ mod scale;
 mod variants;
 // `trace` and the stages: trace bytes are image bytes; stage values from the formulas.
 mod trace;
+// Students' uploads: damaged, huge, non-regular, hard-linked, strangely named (issue 23).
+mod untrusted;

@@ -223,6 +223,8 @@ fn the_command_prints_the_trace_and_its_bytes() {
         "{course}"
     );
     assert_eq!(course.matches("AMB (").count(), 2, "{course}");
+    // Every trace ends with the image's bytes, the course's format too.
+    assert!(course.ends_with(&last), "{course}");
 }
 
 #[test]

@@ -223,6 +223,22 @@ impl KernelChoice {
         }
     }
 
+    /// How much the boxes of the bounding volume hierarchy and the tiles are grown, as a
+    /// share of a box's size plus its distance from the origin, so that they hold every
+    /// hit this kernel reports on their object (a hit outside its object's box does not
+    /// count: `src/render/bvh.rs::Boxes::admits`). The f64 kernels' hits lie within a
+    /// few ulps (10⁻¹⁵) of the surface, 10⁻⁹ is far beyond that. The f32 kernel rounds
+    /// every input to 24 bits and computes t in f32: its hit on a rectangle lying in a
+    /// box of zero thickness is off the plane by some 10⁻⁷ of the coordinates involved,
+    /// so its boxes grow by 10⁻⁴, a thousand times that (tested in
+    /// `src/render/bvh.rs`, `every_kernel_s_hits_lie_in_their_boxes`).
+    pub fn box_padding(self) -> f64 {
+        match self {
+            KernelChoice::TextbookF32 => 1e-4,
+            _ => 1e-9,
+        }
+    }
+
     /// The kernel with this name.
     pub fn from_name(name: &str) -> Option<KernelChoice> {
         KernelChoice::ALL.into_iter().find(|k| k.name() == name)

@@ -295,7 +295,10 @@ impl Session {
         diagnose: bool,
     ) -> Result<Comparison, JsError> {
         let scene = self.scene()?;
-        let student = compare::read::image_named(bytes, name, "student's image").map_err(thrown)?;
+        let name = legacy_rt::error::escaped(name);
+        let reader = std::io::Cursor::new(bytes);
+        let student = compare::read::image_named(reader, MAX_PIXELS, &name, "student's image")
+            .map_err(thrown)?;
         let (width, height) = (student.width as u32, student.height as u32);
         let (options, chosen) = self.options(width, height, choices_json)?;
         let reference = compare::reference(scene, &options, &student);
@@ -315,7 +318,7 @@ impl Session {
             let command = compare::text::trace_command(&chosen, &options, scene_name, x, y);
             worst.trace = Some(command);
         }
-        let text = compare::text::text(&report, scene_name, name, Some(&chosen));
+        let text = compare::text::text(&report, scene_name, &name, Some(&chosen));
         let diff = compare::diff_image(&reference, &student, levels).map_err(thrown)?;
         Ok(Comparison {
             json: serde_json::to_string_pretty(&report).map_err(thrown)?,
