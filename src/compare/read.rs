@@ -390,6 +390,46 @@ mod tests {
         assert_eq!(read_image(&png), Ok(image));
     }
 
+    /// The PNG that made png 0.18.1 panic: 1x1, a palette of 4 bytes (not 3 per colour).
+    fn four_byte_palette() -> Vec<u8> {
+        let chunk = |kind: &[u8], data: &[u8]| {
+            let mut crc = !0u32;
+            for &byte in kind.iter().chain(data) {
+                crc ^= u32::from(byte);
+                for _ in 0..8 {
+                    crc = (crc >> 1) ^ (0xedb8_8320 * (crc & 1));
+                }
+            }
+            let length = (data.len() as u32).to_be_bytes();
+            [&length[..], kind, data, &(!crc).to_be_bytes()].concat()
+        };
+        // One scanline, filter 0 and index 1, in a zlib stored block.
+        let idat = [
+            0x78, 0x01, 0x01, 0x02, 0x00, 0xfd, 0xff, 0x00, 0x01, 0x00, 0x03, 0x00, 0x02,
+        ];
+        let ihdr = [0, 0, 0, 1, 0, 0, 0, 1, 8, 3, 0, 0, 0];
+        let mut png = b"\x89PNG\r\n\x1a\n".to_vec();
+        png.extend(chunk(b"IHDR", &ihdr));
+        png.extend(chunk(b"PLTE", &[10, 20, 30, 40]));
+        png.extend(chunk(b"IDAT", &idat));
+        png.extend(chunk(b"IEND", b""));
+        png
+    }
+
+    #[test]
+    fn the_palette_that_breaks_the_decoder_is_refused_and_its_panic_caught() {
+        let png = four_byte_palette();
+        let refused = read_image(&png);
+        assert!(matches!(&refused, Err(ReadError::Damaged(why)) if why.contains("palette")));
+        // Without the check the decoder panics, and the boundary turns that into an error.
+        let decode = || {
+            let decoder = PngDecoder::new(Cursor::new(&png)).unwrap();
+            let mut pixels = vec![0u8; 3];
+            decoder.read_image(&mut pixels)
+        };
+        assert!(matches!(guarded(decode), Err(ReadError::Damaged(_))));
+    }
+
     #[test]
     fn a_panic_in_the_decoder_is_an_error() {
         let damaged = guarded(|| -> u8 { panic!("index out of range") });
