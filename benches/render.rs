@@ -6,7 +6,7 @@
 
 mod support;
 
-use legacy_rt::render::{Options, render};
+use legacy_rt::render::{Options, count_rays, render};
 use std::path::Path;
 use std::time::Instant;
 
@@ -32,11 +32,11 @@ fn main() {
             continue;
         };
         let scene = legacy_rt::load(&text).expect("the scene loads");
-        let (_, stats) = render(&scene, &options, |_| {});
+        let stats = count_rays(&scene, &options);
         let mut times: Vec<f64> = (0..runs)
             .map(|_| {
                 let start = Instant::now();
-                let (image, _) = render(&scene, &options, |_| {});
+                let image = render(&scene, &options, |_| {});
                 std::hint::black_box(image);
                 start.elapsed().as_secs_f64()
             })

@@ -16,7 +16,7 @@
 #[path = "../tests/support/generated.rs"]
 mod generated;
 
-use legacy_rt::render::{Options, Stats, render};
+use legacy_rt::render::{Options, Stats, count_rays, render};
 use plotters::prelude::*;
 use std::fmt::Write as _;
 use std::time::Instant;
@@ -28,11 +28,11 @@ const LINEAR_UP_TO: usize = 1_000;
 
 /// Median seconds of `runs` renders, and the ray counts of one.
 fn time(scene: &legacy_rt::Scene, options: &Options, runs: usize) -> (f64, Stats) {
-    let mut stats = Stats::default();
+    let stats = count_rays(scene, options);
     let mut times: Vec<f64> = (0..runs)
         .map(|_| {
             let start = Instant::now();
-            stats = render(scene, options, |_| {}).1;
+            std::hint::black_box(render(scene, options, |_| {}));
             start.elapsed().as_secs_f64()
         })
         .collect();
@@ -51,7 +51,7 @@ fn peak_mib() -> Option<f64> {
 /// Child mode: `scaling --peak OBJECTS W H` renders and encodes, then prints VmHWM.
 fn child(objects: usize, width: usize, height: usize) {
     let scene = legacy_rt::load(&generated::many_objects(objects)).unwrap();
-    let (image, _) = render(&scene, &Options::new(width, height), |_| {});
+    let image = render(&scene, &Options::new(width, height), |_| {});
     let ppm = legacy_rt::image_output::ppm(&image);
     std::hint::black_box(ppm);
     println!("{}", peak_mib().unwrap_or(f64::NAN));

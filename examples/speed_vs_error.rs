@@ -16,10 +16,8 @@
 mod accuracy;
 
 use accuracy::{Case, Family, Reference, SHAPES, Tally, reference, suite, tally};
-use legacy_rt::render::{Options, render};
-use legacy_rt::shapes::kernel::{
-    Accurate, Kernel, KernelChoice, StableRoots, Textbook, TextbookF32,
-};
+use legacy_rt::render::{Options, count_rays, render};
+use legacy_rt::shapes::kernel::KernelChoice;
 use plotters::prelude::*;
 use std::fmt::Write as _;
 use std::hint::black_box;
@@ -33,13 +31,13 @@ struct Row {
     tally: Tally,
 }
 
-/// Time per test, in ns, of one pass of kernel `K` over `cases` (20 times each).
-fn pass<K: Kernel>(cases: &[&Case]) -> f64 {
+/// Time per test, in ns, of one pass of `kernel` over `cases` (20 times each).
+fn pass(kernel: KernelChoice, cases: &[&Case]) -> f64 {
     let start = Instant::now();
     let mut hits = 0usize;
     for _ in 0..20 {
         for case in cases {
-            hits += black_box(case.shape.hit_with::<K>(black_box(&case.ray))).is_some() as usize;
+            hits += black_box(case.shape.hit(black_box(&case.ray), kernel)).is_some() as usize;
         }
     }
     black_box(hits);
@@ -50,20 +48,14 @@ fn pass<K: Kernel>(cases: &[&Case]) -> f64 {
 /// kernels take turns, pass by pass, so that a change of clock speed or a neighbour's
 /// load on the shared machine falls on all of them alike.
 fn times_per_test(cases: &[&Case]) -> [f64; 4] {
-    let passes: [fn(&[&Case]) -> f64; 4] = [
-        pass::<Accurate>,
-        pass::<StableRoots>,
-        pass::<Textbook>,
-        pass::<TextbookF32>,
-    ];
-    for timed in passes {
-        timed(cases); // warm-up
+    for kernel in KernelChoice::ALL {
+        pass(kernel, cases); // warm-up
     }
     let mut samples: [Vec<f64>; 4] = Default::default();
     for round in 0..15 {
         for k in 0..4 {
             let k = (k + round) % 4;
-            samples[k].push(passes[k](cases));
+            samples[k].push(pass(KernelChoice::ALL[k], cases));
         }
     }
     samples.map(|mut times| {
@@ -80,12 +72,7 @@ fn rows(families: &[(Family, Vec<Reference>)]) -> (Vec<Row>, Vec<(String, f64, f
         let mine: Vec<_> = families.iter().filter(|(f, _)| f.shape == shape).collect();
         let cases: Vec<&Case> = mine.iter().flat_map(|(f, _)| f.cases.iter()).collect();
         let times = times_per_test(&cases);
-        let tallies = [
-            tally_all::<Accurate>(&mine),
-            tally_all::<StableRoots>(&mine),
-            tally_all::<Textbook>(&mine),
-            tally_all::<TextbookF32>(&mine),
-        ];
+        let tallies = KernelChoice::ALL.map(|kernel| tally_all(kernel, &mine));
         for ((kernel, ns), tally) in KernelChoice::ALL.iter().zip(times).zip(tallies) {
             rows.push(Row {
                 kernel: kernel.name(),
@@ -111,10 +98,10 @@ fn rows(families: &[(Family, Vec<Reference>)]) -> (Vec<Row>, Vec<(String, f64, f
 }
 
 /// One kernel's tally over several families.
-fn tally_all<K: Kernel>(families: &[&(Family, Vec<Reference>)]) -> Tally {
+fn tally_all(kernel: KernelChoice, families: &[&(Family, Vec<Reference>)]) -> Tally {
     let mut total = Tally::default();
     for (family, references) in families {
-        total.merge(&tally::<K>(family, references));
+        total.merge(&tally(kernel, family, references));
     }
     total
 }
@@ -125,11 +112,12 @@ fn rays_per_second(scene: &legacy_rt::scene::Scene, kernel: KernelChoice) -> f64
         kernel,
         ..Options::new(640, 480)
     };
+    let rays = count_rays(scene, &options).total() as f64;
     let mut rates: Vec<f64> = (0..5)
         .map(|_| {
             let start = Instant::now();
-            let (_, stats) = render(scene, &options, |_| {});
-            stats.total() as f64 / start.elapsed().as_secs_f64()
+            black_box(render(scene, &options, |_| {}));
+            rays / start.elapsed().as_secs_f64()
         })
         .collect();
     rates.sort_by(f64::total_cmp);
@@ -174,7 +162,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     writeln!(md, "|---|---|---:|---:|---:|---:|---:|---:|")?;
     let textbook_ns = |shape: &str| {
         rows.iter()
-            .find(|r| r.kernel == Textbook::NAME && r.shape == shape)
+            .find(|r| r.kernel == KernelChoice::Textbook.name() && r.shape == shape)
             .map(|r| r.ns)
             .unwrap()
     };
@@ -245,7 +233,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .map(|&shape| {
             let accurate = rows
                 .iter()
-                .find(|r| r.kernel == Accurate::NAME && r.shape == shape)
+                .find(|r| r.kernel == KernelChoice::Accurate.name() && r.shape == shape)
                 .unwrap();
             (shape, accurate.ns / textbook_ns(shape))
         })

@@ -7,17 +7,19 @@
 //! docs/variants.png has one row per variant of spec §7.3, in the order of
 //! docs/variants.md: the reference, the image as if with the variant, and `compare`'s diff
 //! image of the two, each 96x72, on a scene where the variant shows. docs/compare-diff.png
-//! is the diff image of a student's d04 rendered without shadow rays.
-//! Needs ../shared/course-scenes beside the repository.
+//! is the diff image of a student's examples/shadows.txt rendered without shadow rays.
+//! It also writes docs/variants.md's table of the variants, from the program's own table
+//! (`legacy_rt::render::variant::markdown_table`). Needs ../shared/course-scenes beside
+//! the repository.
 
 use legacy_rt::compare::diff_image;
-use legacy_rt::render::{Image, Options, Variant, render};
+use legacy_rt::render::{Image, Kind, Options, Variant, render};
 
 const TILE: (usize, usize) = (96, 72);
 
 /// The scene each variant is shown on: one where it changes the image.
 fn scene_for(variant: Variant) -> &'static str {
-    match variant.about().id {
+    match variant.row().id {
         "square-falloff" | "no-shadows" => "../shared/course-scenes/d04.txt",
         "segment-distance" | "no-z-rule" | "tile-parity" | "one-bounce" => {
             "../shared/course-scenes/spec1.txt"
@@ -25,7 +27,7 @@ fn scene_for(variant: Variant) -> &'static str {
         "shadow-epsilon" | "facing-normals" | "cone-scale" | "nearer-root" => {
             "examples/note003_records.txt"
         }
-        "max-dist=D" => "examples/mirrors.txt",
+        "max-dist" => "examples/mirrors.txt",
         _ => "../shared/course-scenes/a04.txt",
     }
 }
@@ -53,7 +55,24 @@ fn save(image: &Image, path: &str) {
     println!("wrote {path} ({}x{})", image.width, image.height);
 }
 
+/// The lines around docs/variants.md's table.
+const TABLE_START: &str = "<!-- the table: cargo run --release --example variant_pictures -->\n";
+const TABLE_END: &str = "<!-- end of the table -->\n";
+
+/// Rewrites the table of docs/variants.md between its markers.
+fn write_table() {
+    let path = "docs/variants.md";
+    let text = std::fs::read_to_string(path).expect("docs/variants.md");
+    let start = text.find(TABLE_START).expect("the table's start marker") + TABLE_START.len();
+    let end = text.find(TABLE_END).expect("the table's end marker");
+    let table = legacy_rt::render::variant::markdown_table();
+    let new = format!("{}{table}{}", &text[..start], &text[end..]);
+    std::fs::write(path, new).expect("writes docs/variants.md");
+    println!("wrote the table of {path}");
+}
+
 fn main() {
+    write_table();
     let (w, h) = TILE;
     let variants: Vec<Variant> = Variant::all().collect();
     let mut sheet = Image {
@@ -64,9 +83,9 @@ fn main() {
     for (row, &variant) in variants.iter().enumerate() {
         let scene = load(scene_for(variant));
         let options = Options::new(w, h);
-        let reference = render(&scene, &options, |_| {}).0;
+        let reference = render(&scene, &options, |_| {});
         let deviating = options.with_variant(variant).expect("one variant applies");
-        let student = render(&scene, &deviating, |_| {}).0;
+        let student = render(&scene, &deviating, |_| {});
         let diff = diff_image(&reference, &student, 0).expect("one size");
         for (column, tile) in [&reference, &student, &diff].into_iter().enumerate() {
             let (x0, y0) = (column * (w + 4), row * (h + 4));
@@ -78,11 +97,13 @@ fn main() {
     }
     save(&sheet, "docs/variants.png");
 
-    let scene = load("../shared/course-scenes/d04.txt");
+    let scene = load("examples/shadows.txt");
     let options = Options::new(320, 240);
-    let reference = render(&scene, &options, |_| {}).0;
-    let no_shadows = options.with_variant(Variant::NoShadows).expect("applies");
-    let student = render(&scene, &no_shadows, |_| {}).0;
+    let reference = render(&scene, &options, |_| {});
+    let no_shadows = options
+        .with_variant(Variant::of(Kind::NoShadows))
+        .expect("applies");
+    let student = render(&scene, &no_shadows, |_| {});
     save(
         &diff_image(&reference, &student, 0).expect("one size"),
         "docs/compare-diff.png",

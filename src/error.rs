@@ -169,7 +169,7 @@ pub enum SyntaxError {
     /// A type code that exists in other variants of the course, but not in this format.
     #[error("type {code} ({name}) is not supported{hint}")]
     Unsupported {
-        /// The code.
+        /// The type code as written.
         code: u32,
         /// What the code stood for.
         name: &'static str,
@@ -183,7 +183,7 @@ pub enum SyntaxError {
          program reads"
     )]
     TooManyRecords {
-        /// The limit.
+        /// The most records a scene may hold.
         limit: usize,
     },
     /// The text starts with a UTF-8 byte-order mark, which some editors put first.
@@ -200,7 +200,7 @@ pub enum SyntaxError {
     QuadricLineShort {
         /// How many coefficients the line had.
         count: usize,
-        /// What ended it.
+        /// What came instead of the number: a word, or the end of the file.
         found: Found,
     },
 }
@@ -224,13 +224,13 @@ pub enum MeaningError {
         "the {record}'s x direction is parallel to its normal, so it gives no direction in the plane"
     )]
     XdirParallel {
-        /// Record name.
+        /// The record's name, as messages write it ("sphere").
         record: &'static str,
     },
     /// A size that must be positive is not.
     #[error("the {record}'s {what} must be greater than zero, found {value}")]
     NotPositive {
-        /// Record name.
+        /// The record's name, as messages write it ("sphere").
         record: &'static str,
         /// Which quantity, e.g. "radius".
         what: &'static str,
@@ -254,7 +254,7 @@ pub enum MeaningError {
     /// A procedural shader index other than 0 or 1 (spec §5.5).
     #[error("the {record}'s shader index must be 0 (stripes) or 1 (colour wheel), found {value}")]
     UnknownShader {
-        /// Record name.
+        /// The record's name, as messages write it ("sphere").
         record: &'static str,
         /// The value found.
         value: f64,
@@ -280,7 +280,7 @@ pub enum MeaningError {
          please report this, with the scene file"
     )]
     Internal {
-        /// Record name.
+        /// The record's name, as messages write it ("sphere").
         record: &'static str,
         /// The group the builder asked for.
         label: &'static str,
@@ -304,9 +304,9 @@ pub enum SceneErrorKind {
 /// A scene that cannot be loaded, with the place to fix.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SceneError {
-    /// What is wrong.
+    /// What is wrong, as a syntax or a meaning error.
     pub kind: SceneErrorKind,
-    /// Where.
+    /// The line and column to fix, and the line's text.
     pub at: Location,
     /// Extra context, e.g. the line on which the record started.
     pub notes: Vec<String>,

@@ -2,10 +2,10 @@
 //! ray-tracing course.
 //!
 //! A scene flows text → records → typed scene → pixels → file:
-//! [`scene_file`] reads the text into records (syntax only), [`scene`] validates them
-//! into typed lights and [`shapes`], [`render`](mod@render) traces them as the course's C
-//! program did, and [`image_output`] writes PPM or PNG (docs/architecture.md has a
-//! paragraph per module).
+//! `scene_file` reads the text into records (syntax only), [`scene`] validates them into
+//! typed lights and [`shapes`], [`render`](mod@render) traces them as the course's C
+//! program did, [`compare`] sets a student's image beside the reference, and
+//! [`image_output`] writes PPM or PNG (docs/architecture.md has a paragraph per module).
 //! The format and the rendering rules are those of the project's spec (`spec §N` in the
 //! comments); the formulas are those of the course notes.
 //!
@@ -23,7 +23,7 @@ pub mod error;
 pub mod image_output;
 pub mod render;
 pub mod scene;
-pub mod scene_file;
+pub(crate) mod scene_file;
 pub mod shapes;
 
 pub use error::SceneError;

@@ -183,7 +183,7 @@ fn run_inner(args: &CompareArgs) -> Result<bool, Failure> {
             let (w, h) = size(given, &scene)?;
             let options = legacy_rt::Options {
                 threads: args.threads,
-                ..args.how.options(w, h)?
+                ..args.how.options(&scene, w, h)?
             };
             let reference = compare::reference(&scene, &options, &student);
             (reference, Some(scene), Some(options))

@@ -9,7 +9,7 @@ pub mod trace;
 use clap::{Parser, Subcommand};
 use legacy_rt::image_output::file::OutputFile;
 use legacy_rt::render::{
-    Choices, DEFAULT_MAX_DIST, MAX_THREADS, Show, Stage, Variant, by_name, size_problem,
+    Choices, DEFAULT_MAX_DIST, MAX_THREADS, Show, Stage, VARIANTS, Variant, by_name, size_problem,
 };
 use legacy_rt::shapes::kernel::KernelChoice;
 use std::io::Write;
@@ -142,13 +142,7 @@ pub struct HowArgs {
     #[arg(long, value_name = "IMAGE", value_parser = show, conflicts_with = "stage")]
     pub show: Option<Show>,
 
-    /// Render as if with a student's mistake, or another term's rule (spec §7.3):
-    /// pixel-centre, upside-down, round-bytes, scale-256, no-distance, segment-distance,
-    /// square-falloff, no-shadows, shadow-epsilon[=E], facing-normals, no-z-rule,
-    /// tile-parity, cone-scale, nearer-root, one-bounce, max-dist=D, textbook,
-    /// textbook-f32. Repeat it, or separate ids with commas, for several; docs/variants.md
-    /// shows each
-    #[arg(long, value_name = "ID", value_delimiter = ',', value_parser = variant)]
+    #[arg(long, value_name = "ID", value_delimiter = ',', value_parser = variant, help = variant_help())]
     pub variant: Vec<Variant>,
 }
 
@@ -169,10 +163,15 @@ impl HowArgs {
         self.choices().check().map_err(usage)
     }
 
-    /// The library's options for a `width` x `height` image.
-    pub fn options(&self, width: u64, height: u64) -> Result<legacy_rt::Options, Failure> {
+    /// The library's options for a `width` x `height` image of `scene`.
+    pub fn options(
+        &self,
+        scene: &legacy_rt::Scene,
+        width: u64,
+        height: u64,
+    ) -> Result<legacy_rt::Options, Failure> {
         let choices = self.choices();
-        (choices.options(width as usize, height as usize)).map_err(usage)
+        (choices.options(scene, width as usize, height as usize)).map_err(usage)
     }
 }
 
@@ -211,6 +210,18 @@ fn kernel(name: &str) -> Result<KernelChoice, String> {
 /// Parses a `--stage` name.
 fn stage(name: &str) -> Result<Stage, String> {
     by_name(&Stage::ALL, name, Stage::name)
+}
+
+/// `--variant`'s help: the ids of the table of variants (spec §7.3, §7.4).
+fn variant_help() -> String {
+    let ids: Vec<String> = VARIANTS.iter().map(Variant::pattern).collect();
+    format!(
+        "Render as if with a student's mistake, or another term's rule (spec §7.3), for the \
+         whole image or, with @LINE, for the one object or light whose record starts on \
+         LINE (spec §7.4): {}. Repeat it, or separate ids with commas, for several; \
+         docs/variants.md shows each",
+        ids.join(", ")
+    )
 }
 
 /// Parses a `--variant` id.

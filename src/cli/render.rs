@@ -30,7 +30,7 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     let (width, height) = size((args.width, args.height), &scene)?;
     let options = legacy_rt::Options {
         threads: args.threads,
-        ..args.how.options(width, height)?
+        ..args.how.options(&scene, width, height)?
     };
     legend(&scene, &options);
     let image = render_with_progress(&scene, &options);
@@ -51,7 +51,7 @@ pub fn render_with_progress(
         );
         bar
     });
-    let (image, _) = render::render(scene, options, |rows| {
+    let image = render::render(scene, options, |rows| {
         if let Some(bar) = &bar {
             bar.set_position(rows as u64);
         }

@@ -69,7 +69,7 @@ pub fn run(args: &TraceArgs) -> Result<(), Failure> {
             args.x, args.y
         )));
     }
-    let options = args.how.options(width, height)?;
+    let options = args.how.options(&scene, width, height)?;
     let (x, y) = (args.x as usize, args.y as usize);
     let trace = legacy_rt::render::trace(&scene, &options, x, y).expect("the pixel is inside");
     let text = match args.format.as_str() {

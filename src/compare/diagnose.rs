@@ -10,7 +10,7 @@
 //! under every MAX_DIST at once, and the best D is read off ([`estimate_max_dist`]).
 
 use super::{agreement, pixel_difference};
-use crate::render::{self, Image, Options, Variant};
+use crate::render::{self, Image, Kind, Options, Variant};
 use crate::scene::Scene;
 use serde::Serialize;
 
@@ -20,8 +20,8 @@ pub const PROBE_LIMIT: f64 = 1000.0;
 /// A variant, or two, that explains the student's image better than the reference.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Diagnosis {
-    /// The variants' ids (`--variant`), one or two.
-    pub variants: Vec<String>,
+    /// The variants, one or two; in JSON their ids, as `--variant` takes them.
+    pub variants: Vec<Variant>,
     /// The reference's agreement with the student's image: the share of pixels within
     /// the tolerance.
     pub agreement_before: f64,
@@ -59,14 +59,12 @@ pub fn diagnose(
         let options = variants
             .iter()
             .try_fold(*options, |o, &v| o.with_variant(v).ok())?;
-        let image = render::render(scene, &options, |_| {}).0;
+        let image = render::render(scene, &options, |_| {});
         Some(agreement(&image, student, levels))
     };
     let mut found: Vec<Tried> = Vec::new();
-    for variant in Variant::TRIED {
-        if let Variant::Kernel(kernel) = variant
-            && kernel == options.kernel
-        {
+    for variant in Variant::tried() {
+        if variant.kernel() == Some(options.kernel) {
             continue;
         }
         if let Some(agreement) = score(&[variant])
@@ -83,7 +81,10 @@ pub fn diagnose(
         && agreement > before
     {
         found.push(Tried {
-            variants: vec![Variant::MaxDist(d)],
+            variants: vec![Variant {
+                value: Some(d),
+                ..Variant::of(Kind::MaxDist)
+            }],
             agreement,
             max_dist_range: Some(range),
         });
@@ -95,8 +96,8 @@ pub fn diagnose(
     if let Some(best) = found.first().filter(|best| best.agreement < 1.0) {
         let first = best.variants[0];
         let mut estimated = found.iter().map(|t| t.variants[0]);
-        let max_dist = estimated.rfind(|v| matches!(v, Variant::MaxDist(_)));
-        let partners = Variant::TRIED.into_iter().chain(max_dist);
+        let max_dist = estimated.rfind(|v| v.kind == Kind::MaxDist);
+        let partners = Variant::tried().chain(max_dist);
         let pairs = partners
             .filter(|&partner| partner.id() != first.id())
             .filter_map(|partner| Some((partner, score(&[first, partner])?)));
@@ -104,9 +105,9 @@ pub fn diagnose(
         if let Some((partner, agreement)) = top
             && agreement > best.agreement
         {
-            let range = match (first, partner) {
-                (Variant::MaxDist(_), _) => best.max_dist_range,
-                (_, Variant::MaxDist(_)) => found.iter().find_map(|t| t.max_dist_range),
+            let range = match (first.kind, partner.kind) {
+                (Kind::MaxDist, _) => best.max_dist_range,
+                (_, Kind::MaxDist) => found.iter().find_map(|t| t.max_dist_range),
                 _ => None,
             };
             found.insert(
@@ -122,7 +123,7 @@ pub fn diagnose(
     found
         .into_iter()
         .map(|tried| Diagnosis {
-            variants: tried.variants.iter().map(|v| v.id()).collect(),
+            variants: tried.variants,
             agreement_before: before,
             agreement_after: tried.agreement,
             max_dist_range: tried.max_dist_range,

@@ -50,7 +50,7 @@ impl Default for Tolerance {
 pub enum Verdict {
     /// At most `allow` of the pixels differ by more than `levels`.
     Match,
-    /// More do.
+    /// More pixels than `allow` differ by more than `levels`.
     Differ,
     /// The student's image is not of the size the grader fixed (`--size`): nothing was
     /// compared.
@@ -125,9 +125,9 @@ pub struct Worst {
 pub struct Report {
     /// Match or differ.
     pub verdict: Verdict,
-    /// Image width.
+    /// The width of both images, in pixels.
     pub width: usize,
-    /// Image height.
+    /// The height of both images, in pixels.
     pub height: usize,
     /// Pixels compared (width × height).
     pub pixels: usize,
@@ -188,7 +188,7 @@ pub fn same_size(reference: &Image, student: &Image) -> Result<(), SizeMismatch>
 /// What to compare and how.
 #[derive(Debug, Clone, Copy)]
 pub struct Settings {
-    /// The tolerance.
+    /// How close the student's pixels must be to the reference's.
     pub tolerance: Tolerance,
     /// How many worst pixels to list.
     pub worst: usize,
@@ -224,7 +224,7 @@ pub fn reference(scene: &Scene, options: &Options, student: &Image) -> Image {
         height: student.height,
         ..*options
     };
-    render::render(scene, &options, |_| {}).0
+    render::render(scene, &options, |_| {})
 }
 
 /// Compares `student` with `reference`; with the scene (and the options the reference

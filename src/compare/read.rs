@@ -25,7 +25,7 @@ pub const DEFAULT_MAX_PIXELS: u64 = 4096 * 4096;
 pub enum Content {
     /// A PPM (P3, P6) or another Netpbm image (P1, P2, P4, P5, P7).
     Netpbm(u8),
-    /// A PNG image.
+    /// A PNG image (its 8-byte signature).
     Png,
     /// An image in a format this program does not read (named).
     OtherImage(&'static str),
@@ -86,7 +86,7 @@ pub enum ReadError {
         width: u32,
         /// The height the header gives.
         height: u32,
-        /// The budget.
+        /// The most pixels the caller allows.
         max_pixels: u64,
     },
     /// A file the decoder could not survive, or one known to break it.

@@ -3,7 +3,7 @@
 
 use super::{Report, Verdict};
 use crate::Options;
-use crate::render::{Choices, Variant};
+use crate::render::Choices;
 
 /// `path` as a shell word: as it is when it needs no quoting, in single quotes when it
 /// does, and in the `$'…'` quotes of bash and zsh, with escapes, when it holds a control
@@ -201,11 +201,9 @@ pub fn text(report: &Report, reference: &str, student: &str, choices: Option<&Ch
                 agreement(before)
             ));
             for found in diagnosis {
-                let ids = found.variants.join(",");
-                let about: Vec<String> = (found.variants.iter())
-                    .filter_map(|id| Variant::parse(id).ok())
-                    .map(Variant::describe)
-                    .collect();
+                let ids: Vec<String> = found.variants.iter().map(|v| v.id()).collect();
+                let ids = ids.join(",");
+                let about: Vec<String> = found.variants.iter().map(|v| v.describe()).collect();
                 line(format!(
                     "  --variant {ids}: {} ({})",
                     agreement(found.agreement_after),

@@ -33,7 +33,7 @@ use glam::DVec3;
 /// walk, a sphere and a cylinder (examples/mirrors.txt, 31.0 ns) walk in 1.16x fewer.
 /// Of the scenes measured, only 2 and 4 rectangles alone (examples/finite_planes.txt,
 /// d03) would scan 1.02x and 1.07x faster than they walk.
-pub const HIERARCHY_FROM_NS: f64 = 30.0;
+pub(crate) const HIERARCHY_FROM_NS: f64 = 30.0;
 
 /// What building the tree costs per object and level, in ray-shape tests: callgrind
 /// counts about 790 instructions per object per level of the build (100,000 spheres) and
@@ -101,21 +101,16 @@ struct Node {
 /// Every object's padded box in scene order, `None` for an object without one, and
 /// what testing every bounded object costs.
 #[derive(Debug, Clone)]
-pub struct Boxes {
+pub(crate) struct Boxes {
     boxes: Vec<Option<Aabb>>,
     /// The sum of [`miss_ns`] over the objects with a box.
     scan_ns: f64,
 }
 
 impl Boxes {
-    /// The boxes of `scene`'s objects, padded for the shipped kernel.
-    pub fn new(scene: &Scene) -> Boxes {
-        Boxes::for_kernel(scene, KernelChoice::Accurate)
-    }
-
     /// The boxes of `scene`'s objects, padded for the hits of `kernel`
     /// ([`KernelChoice::box_padding`]).
-    pub fn for_kernel(scene: &Scene, kernel: KernelChoice) -> Boxes {
+    pub(crate) fn for_kernel(scene: &Scene, kernel: KernelChoice) -> Boxes {
         let padding = kernel.box_padding();
         let boxes: Vec<Option<Aabb>> = (scene.objects.iter())
             .map(|object| {
@@ -131,14 +126,14 @@ impl Boxes {
     }
 
     /// Object `index`'s padded box (min, max), if it has one.
-    pub fn get(&self, index: usize) -> Option<(DVec3, DVec3)> {
+    pub(crate) fn get(&self, index: usize) -> Option<(DVec3, DVec3)> {
         self.boxes[index].map(|b| (b.min, b.max))
     }
 
     /// Whether a hit at distance `t` on object `index` counts: `ray` has entered the
     /// object's box by `t`, or the object has no box.
     #[inline]
-    pub fn admits(&self, index: usize, ray: &Ray, t: f64) -> bool {
+    pub(crate) fn admits(&self, index: usize, ray: &Ray, t: f64) -> bool {
         self.boxes[index].is_none_or(|b| b.entered(ray.base, ray.dir.recip(), t))
     }
 }
@@ -146,24 +141,18 @@ impl Boxes {
 /// The hierarchy: nodes, the bounded objects' indices in leaf order, and the indices of
 /// the objects that have no box.
 #[derive(Debug, Clone)]
-pub struct Bvh {
+pub(crate) struct Bvh {
     nodes: Vec<Node>,
     order: Vec<u32>,
     unbounded: Vec<u32>,
 }
 
 impl Bvh {
-    /// The tree for `scene`, or `None` when scanning its bounded objects costs less than
-    /// `HIERARCHY_FROM_NS`.
-    pub fn new(scene: &Scene) -> Option<Bvh> {
-        Bvh::over(&Boxes::new(scene))
-    }
-
     /// The tree over `boxes` if it pays for `rays` camera rays: not when scanning the
     /// bounded objects costs less than `HIERARCHY_FROM_NS`, nor when building it costs
     /// more than scanning
     /// (a 2x2 image of a million spheres: 4 rays against a build of 20 levels).
-    pub fn for_rays(boxes: &Boxes, rays: usize) -> Option<Bvh> {
+    pub(crate) fn for_rays(boxes: &Boxes, rays: usize) -> Option<Bvh> {
         let bounded = boxes.boxes.iter().flatten().count() as f64;
         let build = BUILD_COST_IN_TESTS * bounded.log2().max(1.0);
         if (rays as f64) < build {
@@ -174,7 +163,7 @@ impl Bvh {
 
     /// The tree over `boxes`, or `None` when scanning them costs less than
     /// `HIERARCHY_FROM_NS`.
-    pub fn over(boxes: &Boxes) -> Option<Bvh> {
+    pub(crate) fn over(boxes: &Boxes) -> Option<Bvh> {
         if boxes.scan_ns < HIERARCHY_FROM_NS {
             return None;
         }
@@ -253,7 +242,7 @@ impl Bvh {
     /// object, and `counts` (t > 0, inside the object's box) is asked only of a hit
     /// that would win.
     #[inline]
-    pub fn closest(
+    pub(crate) fn closest(
         &self,
         ray: &Ray,
         test: impl Fn(usize) -> Option<f64>,
@@ -277,7 +266,7 @@ impl Bvh {
 
     /// Whether `test` finds any object hit before `limit`.
     #[inline]
-    pub fn any(&self, ray: &Ray, limit: f64, test: impl Fn(usize) -> bool) -> bool {
+    pub(crate) fn any(&self, ray: &Ray, limit: f64, test: impl Fn(usize) -> bool) -> bool {
         self.walk(ray, |objects| {
             (!objects.iter().any(|&index| test(index as usize))).then_some(limit)
         })
@@ -434,7 +423,7 @@ fn pad(b: Aabb, padding: f64) -> Aabb {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::shapes::kernel::{Accurate, Kernel, StableRoots, Textbook, TextbookF32};
+    use crate::shapes::kernel::{Accurate, Kernel, Stable, Textbook, TextbookF32};
     use crate::shapes::testing::Numbers;
 
     /// A scene of course-like objects: rectangles lying in the coordinate planes (boxes of
@@ -470,7 +459,14 @@ mod tests {
             let camera = Ray::new(eye, (screen - eye).normalize());
             // A ray from the camera ray's first counted hit, in a random direction.
             let from_hit = (0..scene.objects.len())
-                .filter_map(|i| Some((i, scene.objects[i].shape.hit(&camera)?)))
+                .filter_map(|i| {
+                    Some((
+                        i,
+                        scene.objects[i]
+                            .shape
+                            .hit(&camera, KernelChoice::Accurate)?,
+                    ))
+                })
                 .filter(|&(_, t)| t > 0.0)
                 .min_by(|a, b| a.1.total_cmp(&b.1))
                 .map(|(_, t)| {
@@ -483,7 +479,7 @@ mod tests {
                 });
             for ray in [Some(camera), from_hit].into_iter().flatten() {
                 for (index, object) in scene.objects.iter().enumerate() {
-                    if let Some(t) = object.shape.hit_with::<K>(&ray)
+                    if let Some(t) = object.shape.hit_by::<K>(&ray, &mut ())
                         && t > 0.0
                     {
                         hits += 1;
@@ -507,7 +503,7 @@ mod tests {
             let boxes = |kernel| Boxes::for_kernel(&scene, kernel);
             let all = [
                 refused::<Accurate>(&scene, &boxes(KernelChoice::Accurate), &mut numbers),
-                refused::<StableRoots>(&scene, &boxes(KernelChoice::Stable), &mut numbers),
+                refused::<Stable>(&scene, &boxes(KernelChoice::Stable), &mut numbers),
                 refused::<Textbook>(&scene, &boxes(KernelChoice::Textbook), &mut numbers),
                 refused::<TextbookF32>(&scene, &boxes(KernelChoice::TextbookF32), &mut numbers),
             ];
@@ -522,5 +518,33 @@ mod tests {
                 "f32 in f64 boxes: {refused} of {hits} refused"
             );
         }
+    }
+
+    /// The boxes of `scene` for the shipped kernel.
+    fn boxes(scene: &Scene) -> Boxes {
+        Boxes::for_kernel(scene, KernelChoice::Accurate)
+    }
+
+    #[test]
+    fn the_hierarchy_is_built_where_it_pays_for_its_rays() {
+        let spheres = |n: usize| -> String {
+            let one = |i: usize| format!("13\n1 1 1\n1 1 1\n0 0 0\n{} 0 -8\n0.4\n", i as f64 - 2.0);
+            format!("8 6\n0 0 3\n{}", (0..n).map(one).collect::<String>())
+        };
+        // Three spheres cost less to test than a walk of their tree (27 ns against 30, in
+        // `HIERARCHY_FROM_NS`): scanned; four, or three and a cylinder: a tree, for any real
+        // image.
+        let three = boxes(&crate::load(&spheres(3)).unwrap());
+        assert!(Bvh::for_rays(&three, 640 * 480).is_none());
+        let four = boxes(&crate::load(&spheres(4)).unwrap());
+        assert!(Bvh::for_rays(&four, 640 * 480).is_some());
+        let cylinder = "22\n1 1 1\n1 1 1\n0 0 0\n3 0 -8\n0 1 0\n0.4 1\n";
+        let mixed = crate::load(&format!("{}{cylinder}", spheres(3))).unwrap();
+        assert!(Bvh::for_rays(&boxes(&mixed), 640 * 480).is_some());
+        // 1,000 objects: the build costs about 6 × log2(1000) = 60 tests per object, more than
+        // 4 rays scanning every object, less than a 16x12 image does.
+        let many = boxes(&crate::load(&spheres(1000)).unwrap());
+        assert!(Bvh::for_rays(&many, 4).is_none());
+        assert!(Bvh::for_rays(&many, 16 * 12).is_some());
     }
 }

@@ -3,6 +3,7 @@
 //! reproduce them.
 
 use super::{DEFAULT_MAX_DIST, Options, Show, Stage, Variant};
+use crate::scene::Scene;
 use crate::shapes::kernel::KernelChoice;
 
 /// `--max-dist`, `--kernel`, `--stage`, `--show` and `--variant`.
@@ -77,9 +78,10 @@ impl Choices {
         Ok(())
     }
 
-    /// The options for a `width` x `height` render (one thread), or why the choices
-    /// cannot go together (two variants replacing one rule).
-    pub fn options(&self, width: usize, height: usize) -> Result<Options, String> {
+    /// The options for a `width` x `height` render of `scene` (one thread), or why the
+    /// choices cannot go together (two variants replacing one rule) or cannot apply to
+    /// the scene (a variant scoped to a line that starts no record of its kind).
+    pub fn options(&self, scene: &Scene, width: usize, height: usize) -> Result<Options, String> {
         self.check()?;
         let options = Options {
             max_dist: self.max_dist,
@@ -88,9 +90,10 @@ impl Choices {
             show: self.show,
             ..Options::new(width, height)
         };
-        (self.variants.iter()).try_fold(options, |options, &variant| {
-            (options.with_variant(variant)).map_err(|conflict| conflict.to_string())
-        })
+        let options = (self.variants.iter())
+            .try_fold(options, |options, &variant| options.with_variant(variant))?;
+        super::variant::check_scopes(&options, scene)?;
+        Ok(options)
     }
 
     /// The command-line flags that make these choices, each with a leading space; empty

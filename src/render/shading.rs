@@ -36,7 +36,7 @@ pub enum PatternNote {
     },
     /// A texel of spec §5.8: its column and row from the bottom, and its value / 255.
     Texel {
-        /// Column.
+        /// The texel's column, from the left.
         col: i64,
         /// Row, counted from the texture's bottom.
         row: i64,
@@ -46,9 +46,9 @@ pub enum PatternNote {
     /// A procedural shader of spec §5.5 and its value there: the stripe number s, or the
     /// colour wheel's angle t in radians.
     Shader {
-        /// Which shader.
+        /// The shader of the record (stripes or colour wheel).
         shader: Shader,
-        /// s or t.
+        /// The stripe number s, or the colour wheel's angle t in radians.
         value: f64,
     },
 }

@@ -57,7 +57,7 @@ const SIGN_MARGIN: f64 = 1e-3;
 /// Per tile, the objects its camera rays may hit, or none kept (`None` from [`Tiles::at`]).
 #[derive(Debug, Clone)]
 pub(crate) struct Tiles {
-    /// Tiles per row.
+    /// The number of tiles across the image.
     across: usize,
     /// Per tile, row by row.
     lists: Lists,
@@ -389,7 +389,8 @@ fn seen_through(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::render::{Camera, Deviations, Options};
+    use crate::render::variant::{Kind, Rules, Variant};
+    use crate::render::{Camera, Options};
     use crate::shapes::Ray;
     use crate::shapes::kernel::{Accurate, Kernel, KernelChoice, TextbookF32};
     use crate::shapes::testing::Numbers;
@@ -456,7 +457,7 @@ mod tests {
     ) -> Option<(usize, f64)> {
         let mut best: Option<(usize, f64)> = None;
         for index in objects {
-            let t = scene.objects[index].shape.hit_with::<K>(ray);
+            let t = scene.objects[index].shape.hit_by::<K>(ray, &mut ());
             if let Some(t) = t
                 && t > 0.0
                 && boxes.admits(index, ray, t)
@@ -491,14 +492,13 @@ mod tests {
                 [(false, true), (true, true), (false, false), (true, false)]
             {
                 let scene = scene(&mut numbers, eye, 16, planes);
-                let options = Options {
-                    deviations: Deviations {
-                        pixel_centre,
-                        ..Deviations::default()
-                    },
-                    ..Options::new(41, 30)
-                };
-                let camera = Camera::new(&scene, &options);
+                let mut options = Options::new(41, 30);
+                if pixel_centre {
+                    options = options
+                        .with_variant(Variant::of(Kind::PixelCentre))
+                        .unwrap();
+                }
+                let camera = Camera::new(&scene, &options, &Rules::new(&options, &scene));
                 // Each kernel with the boxes the renderer gives it.
                 let boxes = Boxes::for_kernel(&scene, KernelChoice::Accurate);
                 let f32_boxes = Boxes::for_kernel(&scene, KernelChoice::TextbookF32);

@@ -1,249 +1,21 @@
-//! `legacy-rt trace X Y`: everything the renderer computes for one pixel, in order, and
-//! the stages and diagnostic images of spec §7.2.
+//! `legacy-rt trace X Y`: everything the renderer computes for one pixel, in order, in
+//! two formats: readable, and the course's debug lines.
 //!
-//! The trace is not a second tracer. The renderer's own functions take a [`Recorder`]:
-//! for a normal render it is `()`, whose `record` does nothing and whose `ENABLED` is
-//! false, so every recording call compiles away; `trace` passes a `Vec<Event>`, which
-//! collects what the same code computes. The formats below only print those events.
+//! The trace is not a second tracer. The renderer's own functions take a recorder
+//! (`src/render/record.rs`): a plain render's is `()`, which compiles every recording
+//! call away; [`trace`] passes a `Vec<Event>`, which collects what the same code computes
+//! (every object tested in file order, with the shape's reasons). The formats below only
+//! print those events.
 
-use super::variant::Rules;
-use super::{Camera, Options, Stats, Tracer, WithTracer, dispatch};
+use super::record::{Event, LightStep, Skip};
+use super::{Options, Setup};
 use crate::render::shading::PatternNote;
+use crate::scene::Scene;
 use crate::scene::dump::number;
-use crate::scene::{Material, Scene};
-use crate::shapes::kernel::Kernel;
-use crate::shapes::{HitNote, Ray, Surface, Verdict};
+use crate::shapes::kernel::with_kernel;
+use crate::shapes::{HitNote, Verdict};
 use glam::DVec3;
 use std::fmt::Write;
-
-/// How much of spec §4 applies: the course's assignments, in the order it taught them
-/// (spec §7.2).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Stage {
-    /// §4.2 without the lights (step 5) and the reflection (step 7).
-    Ambient,
-    /// Ambient and every light's §4.3 contribution, without the shadow test.
-    Diffuse,
-    /// Ambient and diffuse with the shadow test; no reflection.
-    Shadows,
-    /// §4 as written.
-    #[default]
-    Full,
-}
-
-impl Stage {
-    /// Every stage, in the course's order.
-    pub const ALL: [Stage; 4] = [Stage::Ambient, Stage::Diffuse, Stage::Shadows, Stage::Full];
-
-    /// The name `--stage` takes.
-    pub fn name(self) -> &'static str {
-        match self {
-            Stage::Ambient => "ambient",
-            Stage::Diffuse => "diffuse",
-            Stage::Shadows => "shadows",
-            Stage::Full => "full",
-        }
-    }
-
-    /// Whether the lights' diffuse terms are added.
-    #[inline(always)]
-    pub fn lights(self) -> bool {
-        self != Stage::Ambient
-    }
-
-    /// Whether a shadow ray can block a light.
-    #[inline(always)]
-    pub fn shadows(self) -> bool {
-        matches!(self, Stage::Shadows | Stage::Full)
-    }
-
-    /// Whether mirrors reflect.
-    #[inline(always)]
-    pub fn reflects(self) -> bool {
-        self == Stage::Full
-    }
-}
-
-/// A diagnostic image instead of the stage's: what a student reaches for when stuck.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Show {
-    /// The unit normal at the first hit as a colour, (N + 1) / 2.
-    Normals,
-    /// Each object in its own colour ([`super::object_colour`]).
-    Objects,
-    /// Grey 1 - t / MAX_DIST for the distance t to the first hit.
-    Depth,
-}
-
-impl Show {
-    /// Every diagnostic image.
-    pub const ALL: [Show; 3] = [Show::Normals, Show::Objects, Show::Depth];
-
-    /// The name `--show` takes.
-    pub fn name(self) -> &'static str {
-        match self {
-            Show::Normals => "normals",
-            Show::Objects => "objects",
-            Show::Depth => "depth",
-        }
-    }
-}
-
-/// Where the renderer tells what it computes.
-pub trait Recorder {
-    /// Whether events are wanted.
-    const ENABLED: bool;
-
-    /// Whether every object's test is wanted, with the shape's reasons: the objects are
-    /// then tested one by one in file order, as the course program did. When false the
-    /// renderer takes the hierarchy and the kernel's compiled entry (the same numbers).
-    const EVERY_TEST: bool = Self::ENABLED;
-
-    /// Takes one event; `event` is called only by a recorder that keeps it.
-    fn record(&mut self, event: impl FnOnce() -> Event);
-}
-
-impl Recorder for () {
-    const ENABLED: bool = false;
-
-    #[inline(always)]
-    fn record(&mut self, _: impl FnOnce() -> Event) {}
-}
-
-impl Recorder for Vec<Event> {
-    const ENABLED: bool = true;
-
-    fn record(&mut self, event: impl FnOnce() -> Event) {
-        self.push(event());
-    }
-}
-
-/// One thing the renderer computed, in the order it did.
-#[derive(Debug, Clone, PartialEq)]
-pub enum Event {
-    /// A ray of the path starts: the camera ray (depth 0) or a reflected one.
-    Segment {
-        /// 0 for the camera ray, k for the k-th reflection.
-        depth: usize,
-        /// The ray.
-        ray: Ray,
-        /// The path's length so far.
-        total_dist: f64,
-    },
-    /// The path is longer than MAX_DIST: black from here (spec §4.2 step 1).
-    CutOff {
-        /// The path's length.
-        total_dist: f64,
-    },
-    /// An object not tested because the ray leaves it (`last_hit`).
-    Skipped {
-        /// Its index among the scene's objects.
-        object: usize,
-    },
-    /// An object tested: its t (`None`: no hit) and its shape's reasons.
-    Tested {
-        /// Its index.
-        object: usize,
-        /// The hit distance, if any.
-        t: Option<f64>,
-        /// Why.
-        notes: Vec<HitNote>,
-    },
-    /// The closest hit (spec §4.6), if any.
-    Closest {
-        /// Object and t.
-        hit: Option<(usize, f64)>,
-    },
-    /// The hit's point, normal and material.
-    Surface {
-        /// The object.
-        object: usize,
-        /// The distance from the segment's base.
-        t: f64,
-        /// The path's length including this segment.
-        total_dist: f64,
-        /// Point, normal, plane coordinates.
-        surface: Surface,
-        /// The material there.
-        material: Material,
-        /// What chose it.
-        pattern: PatternNote,
-    },
-    /// A light's term starts.
-    Lamp {
-        /// The light's index.
-        light: usize,
-    },
-    /// A step of one light's term (spec §4.3).
-    Light(LightStep),
-    /// A light's term is added.
-    Lit {
-        /// The light's index.
-        light: usize,
-        /// Its contribution.
-        contribution: DVec3,
-        /// The intensity with it.
-        intensity: DVec3,
-    },
-    /// The division by the path's length and the addition to the colour (spec §4.2).
-    Divided {
-        /// Ambient plus the lights.
-        intensity: DVec3,
-        /// The path's length.
-        total_dist: f64,
-        /// intensity / total_dist.
-        seen: DVec3,
-        /// The product of the mirrors' specular triples so far.
-        weight: DVec3,
-        /// The colour so far.
-        colour: DVec3,
-    },
-    /// A diagnostic image's colour.
-    Shown {
-        /// Which image.
-        show: Show,
-        /// Its colour.
-        colour: DVec3,
-    },
-}
-
-/// A step of one light's diffuse term.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum LightStep {
-    /// The material's diffuse triple is zero: nothing to add.
-    NoDiffuse,
-    /// The light sits at the point (or infinitely far): no direction.
-    NoDirection {
-        /// |L|.
-        dist: f64,
-    },
-    /// The unit vector to the light, the distance and cos θ = N·u.
-    Towards {
-        /// u.
-        u: DVec3,
-        /// |L|.
-        dist: f64,
-        /// N·u.
-        cos: f64,
-    },
-    /// A spotlight's test: the cosine between the beam and the direction to the point.
-    Spot {
-        /// unit(hit - light)·beam.
-        along: f64,
-        /// along > cos(half-angle).
-        lit: bool,
-    },
-    /// The shadow ray's start.
-    ShadowRay {
-        /// The ray from the hit point toward the light.
-        ray: Ray,
-    },
-    /// What blocked the light, if anything (object, t).
-    Blocked {
-        /// The first object closer than the light.
-        blocker: Option<(usize, f64)>,
-    },
-}
 
 /// Everything the renderer computed for one pixel.
 #[derive(Debug, Clone, PartialEq)]
@@ -263,38 +35,30 @@ pub struct Trace {
 }
 
 /// The trace of pixel (x, y) under `options`, or `None` if it lies outside the image.
-/// Every object is tested in file order, as the course program did (the hierarchy
-/// changes which objects are tested, never the bytes).
+/// Every object is tested in file order, as the course program did (the tiles and the
+/// hierarchy change which objects are tested, never the bytes).
 pub fn trace(scene: &Scene, options: &Options, x: usize, y: usize) -> Option<Trace> {
     if x >= options.width || y >= options.height {
         return None;
     }
-    struct Job<'a>(&'a Scene, &'a Options, usize, usize);
-    impl WithTracer for Job<'_> {
-        type Output = Trace;
-        fn run<K: Kernel, V: Rules>(self) -> Trace {
-            let Job(scene, options, x, y) = self;
-            let scene = options.deviations.scene(scene);
-            let camera = Camera::new(&scene, options);
-            let tracer = Tracer::<K, V>::new(&scene, options);
-            let mut events = Vec::new();
-            let colour = match camera.ray(x, y) {
-                Some(ray) => {
-                    tracer.pixel(ray, None, options.show, &mut Stats::default(), &mut events)
-                }
-                None => DVec3::ZERO,
-            };
-            Trace {
-                pixel: (x, y),
-                world: camera.world(x, y),
-                options: *options,
-                events,
-                colour,
-                bytes: tracer.bytes(colour),
-            }
+    let setup = Setup::new(scene, options);
+    let tracer = setup.tracer(options);
+    let mut events = Vec::new();
+    let colour = match setup.camera.ray(x, y) {
+        Some(ray) => {
+            let tile = tracer.objects.tile(x, y);
+            with_kernel!(options.kernel, K => tracer.pixel::<K>(ray, tile, &mut events))
         }
-    }
-    Some(dispatch(options, Job(scene, options, x, y)))
+        None => DVec3::ZERO,
+    };
+    Some(Trace {
+        pixel: (x, y),
+        world: setup.camera.world(x, y),
+        options: *options,
+        events,
+        colour,
+        bytes: setup.rules.bytes(colour),
+    })
 }
 
 /// A vector with the trace's fixed decimals.
@@ -401,7 +165,8 @@ impl Trace {
             Some(show) => format!("--show {}", show.name()),
             None => format!("stage {}", self.options.stage.name()),
         };
-        let variants = self.options.deviations.variants();
+        let mut variants: Vec<_> = self.options.variants.iter().collect();
+        variants.sort_by_key(|v| (v.kind, v.line));
         if !variants.is_empty() {
             let ids: Vec<_> = variants.iter().map(|v| v.id()).collect();
             let _ = write!(stage, "; as if with --variant {}", ids.join(","));
@@ -455,10 +220,13 @@ impl Trace {
                 number(*total_dist),
                 number(self.options.max_dist)
             )),
-            Event::Skipped { object } => line(format!(
-                "{indent}{}: skipped, the ray leaves it",
-                object_name(scene, *object)
-            )),
+            Event::Skipped { object, reason } => {
+                let why = match reason {
+                    Skip::Leaves => "skipped, the ray leaves it",
+                    Skip::Variant => "skipped by the variant",
+                };
+                line(format!("{indent}{}: {why}", object_name(scene, *object)));
+            }
             Event::Tested { object, t, notes } => {
                 let verdict = match t {
                     Some(t) => format!("hit at t = {}", number(*t)),
@@ -511,6 +279,7 @@ impl Trace {
             Event::Lamp { light } => line(format!("  {}:", light_name(scene, *light))),
             Event::Light(step) => match *step {
                 LightStep::NoDiffuse => line("    diffuse is zero: nothing to add".into()),
+                LightStep::Off => line("    off under the variant: nothing to add".into()),
                 LightStep::NoDirection { dist } => line(format!(
                     "    distance {}: no direction, nothing to add",
                     number(dist)

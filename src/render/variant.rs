@@ -1,272 +1,639 @@
-//! Variants (spec §7.3): the mistakes students make, and the rules that differed between
-//! terms of the course, each a named deviation from one rule of spec §4-§5.
+//! Variants (spec §7.3, §7.4): the mistakes students make, and the rules that differed
+//! between terms of the course, each a named replacement of one rule of spec §4-§5.
 //!
-//! `legacy-rt --variant ID` renders a scene *as if* with that mistake, and
-//! `legacy-rt compare --diagnose` tries every variant to explain a student's image. The
-//! variants cost the normal render nothing: the tracer takes a [`Rules`] type, and under
-//! [`AsSpecified`] (every render without a variant) each `V::DEVIATES && …` test is false
-//! at compile time, so the deviating code is not in the normal render at all. Variants of
-//! the scene's geometry (cone-scale, tile-parity, no-z-rule) rewrite a copy of the scene
-//! instead ([`Deviations::scene`]); nearer-root reads the shape's own account of its
-//! roots (`FirstRoot`); max-dist=D and the kernels are options the renderer already
-//! has.
+//! They are one table, [`VARIANTS`]: a row per variant with its id, the rule it replaces,
+//! what it does instead, where its rule lives ([`Site`]), its parameter and what it may be
+//! scoped to (`ID@LINE`, [`Scope`]). `--help`, docs/variants.md's list, the page's
+//! vocabulary and what `compare --diagnose` tries are made from it; adding a variant is a
+//! row here and its rule at its site. A render turns the variants it is given into
+//! `Rules`, the values the tracer consults where each rule lives, and into a copy of the
+//! scene for the rules that live in the scene's geometry (`Rules::scene`).
 
 use crate::render::{DEFAULT_MAX_DIST, Options, to_byte};
 use crate::scene::{Pattern, Scene};
 use crate::shapes::kernel::KernelChoice;
-use crate::shapes::{Cone, HitNote, Notes, Shape, Verdict};
+use crate::shapes::{Cone, Shape};
+use glam::DVec3;
 use std::borrow::Cow;
 
 /// The ε of `shadow-epsilon` unless another is given (`shadow-epsilon=1e-3`).
 pub const DEFAULT_EPSILON: f64 = 1e-6;
 
-/// One deviation from spec §4-§5, as `--variant` names it.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Variant {
-    /// §4.1: the world point at (x + 0.5)/W instead of x/(W - 1).
-    PixelCentre,
-    /// §4.1: output row r holds y = r (bottom row first).
-    UpsideDown,
-    /// §4.7: bytes rounded half up instead of truncated.
-    RoundBytes,
-    /// §4.7: trunc(256 c) clamped to 255 instead of trunc(255 c).
-    Scale256,
-    /// §4.2 step 6: no division by the distance.
-    NoDistance,
-    /// §4.2 step 6: divided by this segment's length, not the path's.
-    SegmentDistance,
-    /// §4.3: cos θ / dist² instead of cos θ / dist.
-    SquareFalloff,
-    /// §4.3: no shadow rays (every light reaches), mirrors still reflect.
-    NoShadows,
-    /// §4.2/§4.3: rays leaving a surface test every object and count hits with t > ε,
-    /// instead of skipping the object they leave.
-    ShadowEpsilon(f64),
-    /// §4.4: the normal flipped toward the viewer (N·D > 0 → -N).
-    FacingNormals,
-    /// §5.1: no miss for plane hits with z > 0.
-    NoZRule,
-    /// §5.4: even relx + rely → foreground.
-    TileParity,
-    /// §5.6: the cone's k = r²/h (the paraboloid's) instead of (r/h)².
-    ConeScale,
-    /// §5.6: the quadrics 21-24 try only the smaller root; out of bounds is a miss.
-    NearerRoot,
-    /// §4.5: at most one reflected ray per camera ray.
-    OneBounce,
-    /// §4.2: MAX_DIST D instead of 32.
-    MaxDist(f64),
-    /// The notes' root formula in f64 or f32 (`--kernel textbook`, `textbook-f32`).
-    Kernel(KernelChoice),
+/// Where a variant's rule lives.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Site {
+    /// The camera: where the rays go and where the pixels land (spec §4.1).
+    Camera,
+    /// The scene's geometry or materials, changed in a copy before the render.
+    Scene,
+    /// Which hits count: the aggregate's closest hit and shadow test (spec §4.3, §4.6).
+    Hits,
+    /// The tracer's loop: lights, normals, the division, the mirror (spec §4.2-§4.5).
+    Tracer,
+    /// The conversion of a colour to bytes (spec §4.7).
+    Bytes,
+    /// A render option: MAX_DIST or the kernel.
+    Option,
 }
 
-/// What a variant deviates from, for `--help`, the docs and the report.
-pub struct About {
-    /// The id `--variant` takes (`max-dist=D` for [`Variant::MaxDist`]).
+/// The kinds of object a variant scoped to one record applies to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kinds {
+    /// Any kind of object.
+    Any,
+    /// Cones (type 23), whose k the variant cone-scale replaces.
+    Cones,
+    /// The plane-based objects (14-17, 20), whose hits have a z rule.
+    Planes,
+    /// Tiled planes (16).
+    TiledPlanes,
+    /// The quadrics 21-24, whose roots are chosen within bounds.
+    BoundedQuadrics,
+}
+
+impl Kinds {
+    /// Whether `shape` is of these kinds.
+    fn admit(self, shape: &Shape) -> bool {
+        match self {
+            Kinds::Any => true,
+            Kinds::Cones => matches!(shape, Shape::Cone(_)),
+            Kinds::Planes => shape.plane().is_some(),
+            Kinds::TiledPlanes => matches!(shape, Shape::TiledPlane(_)),
+            Kinds::BoundedQuadrics => shape.axis_frame().is_some(),
+        }
+    }
+
+    /// The kinds in words, plural.
+    fn name(self) -> &'static str {
+        match self {
+            Kinds::Any => "objects",
+            Kinds::Cones => "cones (23)",
+            Kinds::Planes => "plane-based objects (14-17, 20)",
+            Kinds::TiledPlanes => "tiled planes (16)",
+            Kinds::BoundedQuadrics => "quadrics 21-24",
+        }
+    }
+}
+
+/// What a variant applies to: the whole image, or (`ID@LINE`) the one record whose type
+/// code is on LINE.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Scope {
+    /// The whole image only.
+    Image,
+    /// The whole image, or one object of these kinds.
+    ImageOrObject(Kinds),
+    /// One object of these kinds only: the edits of spec §7.4.
+    Object(Kinds),
+    /// The whole image, or one light.
+    ImageOrLight,
+    /// One light only.
+    Light,
+}
+
+/// The parameter a variant takes after `=`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Parameter {
+    /// It takes no parameter.
+    None,
+    /// A required number, named as in the id (`max-dist=D`).
+    Required(&'static str),
+    /// A number with a default (`shadow-epsilon[=E]`).
+    Optional(&'static str, f64),
+}
+
+/// A row of the table.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Row {
+    /// The variant this row describes.
+    pub kind: Kind,
+    /// The id `--variant` takes.
     pub id: &'static str,
-    /// The spec's rule it replaces.
+    /// Where its rule lives.
+    pub site: Site,
+    /// What it may be scoped to.
+    pub scope: Scope,
+    /// The value it takes after `=`, if any.
+    pub parameter: Parameter,
+    /// Variants of the same group replace the same rule and cannot apply together (to
+    /// the same record).
+    pub group: &'static str,
+    /// The rule of the spec it replaces.
     pub rule: &'static str,
     /// What it does instead.
     pub instead: &'static str,
 }
 
-impl Variant {
-    /// Every variant `compare --diagnose` tries on its own, in the order of spec §7.3;
-    /// max-dist=D is estimated separately.
-    pub const TRIED: [Variant; 17] = [
-        Variant::PixelCentre,
-        Variant::UpsideDown,
-        Variant::RoundBytes,
-        Variant::Scale256,
-        Variant::NoDistance,
-        Variant::SegmentDistance,
-        Variant::SquareFalloff,
-        Variant::NoShadows,
-        Variant::ShadowEpsilon(DEFAULT_EPSILON),
-        Variant::FacingNormals,
-        Variant::NoZRule,
-        Variant::TileParity,
-        Variant::ConeScale,
-        Variant::NearerRoot,
-        Variant::OneBounce,
-        Variant::Kernel(KernelChoice::Textbook),
-        Variant::Kernel(KernelChoice::TextbookF32),
-    ];
-
-    /// Every variant with its rule, in the order of spec §7.3 (max-dist=D with D = 70,
-    /// the other term's value).
-    pub fn all() -> impl Iterator<Item = Variant> {
-        let max_dist = Variant::MaxDist(70.0);
-        Variant::TRIED[..15]
-            .iter()
-            .copied()
-            .chain([max_dist])
-            .chain(Variant::TRIED[15..].iter().copied())
-    }
-
-    /// The id, with its value where it has one: `max-dist=70`, `shadow-epsilon=0.001`
-    /// (plain `shadow-epsilon` for ε = 1e-6).
-    pub fn id(self) -> String {
-        match self {
-            Variant::MaxDist(d) => format!("max-dist={d}"),
-            Variant::ShadowEpsilon(e) if e != DEFAULT_EPSILON => format!("shadow-epsilon={e}"),
-            _ => self.about().id.to_string(),
+/// Declares [`Kind`] and [`VARIANTS`] from one list of rows, so that they cannot drift.
+macro_rules! variants {
+    ($($(#[$doc:meta])* $kind:ident: $id:literal, $site:ident, $scope:expr, $parameter:expr,
+       $group:literal, $rule:literal, $instead:literal;)*) => {
+        /// Which variant: one per row of [`VARIANTS`], in its order.
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+        pub enum Kind {
+            $($(#[$doc])* $kind,)*
         }
-    }
 
-    /// The variant named `text`: an id, or `max-dist=D`, or `shadow-epsilon=E`.
-    pub fn parse(text: &str) -> Result<Variant, String> {
-        let value = |name: &str, value: &str| -> Result<f64, String> {
-            match value.parse::<f64>() {
-                Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
-                _ => Err(format!(
-                    "{name}= takes a number greater than 0, found {value:?}"
-                )),
-            }
-        };
-        if let Some(d) = text.strip_prefix("max-dist=") {
-            return Ok(Variant::MaxDist(value("max-dist", d)?));
-        }
-        if let Some(e) = text.strip_prefix("shadow-epsilon=") {
-            return Ok(Variant::ShadowEpsilon(value("shadow-epsilon", e)?));
-        }
-        if text == "max-dist" {
-            return Err("max-dist takes its distance: max-dist=70".to_string());
-        }
-        Variant::all()
-            .find(|v| !matches!(v, Variant::MaxDist(_)) && v.about().id == text)
-            .ok_or_else(|| {
-                let ids: Vec<_> = Variant::all().map(|v| v.about().id).collect();
-                format!(
-                    "unknown variant {text:?}; the variants are: {}",
-                    ids.join(", ")
-                )
-            })
-    }
+        /// Every variant, in the order of spec §7.3 and §7.4.
+        pub const VARIANTS: &[Row] = &[$(Row {
+            kind: Kind::$kind,
+            id: $id,
+            site: Site::$site,
+            scope: $scope,
+            parameter: $parameter,
+            group: $group,
+            rule: $rule,
+            instead: $instead,
+        },)*];
+    };
+}
 
-    /// The rule it replaces and what it does instead (spec §7.3).
-    pub fn about(self) -> About {
-        let (id, rule, instead) = match self {
-            Variant::PixelCentre => (
-                "pixel-centre",
-                "§4.1 world point x/(W-1)·ww - ww/2",
-                "(x + 0.5)/W·ww - ww/2, and the same for y",
-            ),
-            Variant::UpsideDown => (
-                "upside-down",
-                "§4.1 output row r holds y = H-1-r",
-                "row r holds y = r: the image upside down",
-            ),
-            Variant::RoundBytes => (
-                "round-bytes",
-                "§4.7 bytes truncated",
-                "rounded half up: floor(255·c + 0.5)",
-            ),
-            Variant::Scale256 => ("scale-256", "§4.7 ×255", "trunc(256·c), clamped to 255"),
-            Variant::NoDistance => (
-                "no-distance",
-                "§4.2 step 6 I = I / total_dist",
-                "no division",
-            ),
-            Variant::SegmentDistance => (
-                "segment-distance",
-                "§4.2 step 6 divides by the cumulative distance",
-                "divides by the distance from this segment's base to the hit",
-            ),
-            Variant::SquareFalloff => ("square-falloff", "§4.3 cos θ / dist", "cos θ / dist²"),
-            Variant::NoShadows => (
-                "no-shadows",
-                "§4.3 shadow ray",
-                "every light reaches (stage diffuse, but with reflection)",
-            ),
-            Variant::ShadowEpsilon(_) => (
-                "shadow-epsilon",
-                "§4.2/§4.3 shadow and reflected rays skip the object they leave",
-                "they test every object, counting hits with t > ε only \
-                 (ε = 1e-6, or shadow-epsilon=E)",
-            ),
-            Variant::FacingNormals => (
-                "facing-normals",
-                "§4.4 normals never flipped",
-                "N flipped when N·D > 0",
-            ),
-            Variant::NoZRule => ("no-z-rule", "§5.1 miss if z > 0", "no z test"),
-            Variant::TileParity => (
-                "tile-parity",
-                "§5.4 odd relx + rely → foreground",
-                "even → foreground",
-            ),
-            Variant::ConeScale => (
-                "cone-scale",
-                "§3.2/§5.6 cone k = (r/h)²",
-                "k = r²/h (the paraboloid's formula)",
-            ),
-            Variant::NearerRoot => (
-                "nearer-root",
-                "§5.6 smallest positive root in bounds",
-                "only the smaller root is tried; out of bounds is a miss",
-            ),
-            Variant::OneBounce => (
-                "one-bounce",
-                "§4.5 recursion",
-                "at most one reflected ray per camera ray",
-            ),
-            Variant::MaxDist(_) => (
-                "max-dist=D",
-                "§4.2 MAX_DIST 32",
-                "MAX_DIST D (one term of the course used 70)",
-            ),
-            Variant::Kernel(KernelChoice::TextbookF32) => (
-                "textbook-f32",
-                "the accurate roots",
-                "the notes' (-b ± sqrt(b² - 4ac)) / 2a in f32",
-            ),
-            Variant::Kernel(KernelChoice::Stable) => (
-                "stable",
-                "the accurate roots",
-                "the notes' coefficients with cancellation-free roots",
-            ),
-            Variant::Kernel(_) => (
-                "textbook",
-                "the accurate roots",
-                "the notes' (-b ± sqrt(b² - 4ac)) / 2a in f64",
-            ),
-        };
-        About { id, rule, instead }
+use Kinds::{Any, BoundedQuadrics, Cones, Planes, TiledPlanes};
+use Scope::{Image, ImageOrLight, ImageOrObject, Light, Object};
+
+variants! {
+    /// §4.1: the world point at (x + 0.5)/W instead of x/(W - 1).
+    PixelCentre: "pixel-centre", Camera, Image, Parameter::None, "world point",
+        "§4.1 world point x/(W-1)·ww - ww/2", "(x + 0.5)/W·ww - ww/2, and the same for y";
+    /// §4.1: output row r holds y = r (bottom row first).
+    UpsideDown: "upside-down", Camera, Image, Parameter::None, "rows",
+        "§4.1 output row r holds y = H-1-r", "row r holds y = r: the image upside down";
+    /// §4.7: bytes rounded half up instead of truncated.
+    RoundBytes: "round-bytes", Bytes, Image, Parameter::None, "bytes",
+        "§4.7 bytes truncated", "rounded half up: floor(255·c + 0.5)";
+    /// §4.7: trunc(256 c) clamped to 255 instead of trunc(255 c).
+    Scale256: "scale-256", Bytes, Image, Parameter::None, "bytes",
+        "§4.7 ×255", "trunc(256·c), clamped to 255";
+    /// §4.2 step 6: no division by the distance.
+    NoDistance: "no-distance", Tracer, Image, Parameter::None, "divisor",
+        "§4.2 step 6 I = I / total_dist", "no division";
+    /// §4.2 step 6: divided by this segment's length, not the path's.
+    SegmentDistance: "segment-distance", Tracer, Image, Parameter::None, "divisor",
+        "§4.2 step 6 divides by the cumulative distance",
+        "divides by the distance from this segment's base to the hit";
+    /// §4.3: cos θ / dist² instead of cos θ / dist (every light, or one).
+    SquareFalloff: "square-falloff", Tracer, ImageOrLight, Parameter::None, "falloff",
+        "§4.3 cos θ / dist", "cos θ / dist²";
+    /// §4.3: no shadow rays (every light reaches), mirrors still reflect.
+    NoShadows: "no-shadows", Tracer, Image, Parameter::None, "shadows",
+        "§4.3 shadow ray", "every light reaches (stage diffuse, but with reflection)";
+    /// §4.2/§4.3: rays leaving a surface (every surface, or one) test every object and
+    /// count hits with t > ε, instead of skipping the object they leave.
+    ShadowEpsilon: "shadow-epsilon", Hits, ImageOrObject(Any),
+        Parameter::Optional("E", DEFAULT_EPSILON), "leaving",
+        "§4.2/§4.3 shadow and reflected rays skip the object they leave",
+        "they test every object, counting hits with t > ε only (ε = 1e-6, or shadow-epsilon=E)";
+    /// §4.4: the normal flipped toward the viewer (N·D > 0 → -N), on every object or one.
+    FacingNormals: "facing-normals", Tracer, ImageOrObject(Any), Parameter::None, "normal",
+        "§4.4 normals never flipped", "N flipped when N·D > 0";
+    /// §5.1: no miss for plane hits with z > 0, on every plane or one.
+    NoZRule: "no-z-rule", Scene, ImageOrObject(Planes), Parameter::None, "z rule",
+        "§5.1 miss if z > 0", "no z test";
+    /// §5.4: even relx + rely → foreground, on every tiled plane or one.
+    TileParity: "tile-parity", Scene, ImageOrObject(TiledPlanes), Parameter::None, "parity",
+        "§5.4 odd relx + rely → foreground", "even → foreground";
+    /// §5.6: the cone's k = r²/h (the paraboloid's) instead of (r/h)², on every cone or
+    /// one.
+    ConeScale: "cone-scale", Scene, ImageOrObject(Cones), Parameter::None, "cone k",
+        "§3.2/§5.6 cone k = (r/h)²", "k = r²/h (the paraboloid's formula)";
+    /// §5.6: the quadrics 21-24 (every one, or one) try only the smaller root; out of
+    /// bounds is a miss.
+    NearerRoot: "nearer-root", Scene, ImageOrObject(BoundedQuadrics), Parameter::None, "root",
+        "§5.6 smallest positive root in bounds",
+        "only the smaller root is tried; out of bounds is a miss";
+    /// §4.5: at most one reflected ray per camera ray.
+    OneBounce: "one-bounce", Tracer, Image, Parameter::None, "bounces",
+        "§4.5 recursion", "at most one reflected ray per camera ray";
+    /// §4.2: MAX_DIST D instead of 32.
+    MaxDist: "max-dist", Option, Image, Parameter::Required("D"), "max-dist",
+        "§4.2 MAX_DIST 32", "MAX_DIST D (one term of the course used 70)";
+    /// The notes' root formula in f64 (`--kernel textbook`).
+    Textbook: "textbook", Option, Image, Parameter::None, "kernel",
+        "the accurate roots", "the notes' (-b ± sqrt(b² - 4ac)) / 2a in f64";
+    /// The notes' root formula in f32 (`--kernel textbook-f32`).
+    TextbookF32: "textbook-f32", Option, Image, Parameter::None, "kernel",
+        "the accurate roots", "the notes' (-b ± sqrt(b² - 4ac)) / 2a in f32";
+    /// §7.4: camera and mirror rays pass through the object.
+    Hidden: "hidden", Hits, Object(Any), Parameter::None, "hidden",
+        "§4.6 every object is a candidate for camera and mirror rays",
+        "camera and mirror rays pass through the object";
+    /// §7.4: the object casts no shadow.
+    NoShadow: "no-shadow", Hits, Object(Any), Parameter::None, "casts",
+        "§4.3 every object may block a shadow ray",
+        "the object casts no shadow (shadow rays pass through it)";
+    /// §7.4: no light adds to the object.
+    Unlit: "unlit", Tracer, Object(Any), Parameter::None, "lit",
+        "§4.3 every light adds to the object",
+        "the object receives no diffuse light (ambient and mirror only)";
+    /// §7.4: the object's specular reflection is not traced.
+    NoMirror: "no-mirror", Tracer, Object(Any), Parameter::None, "mirror",
+        "§4.5 reflection where the specular is non-zero",
+        "the object's specular reflection is not traced";
+    /// §7.4: the object's normal is reversed at every hit.
+    FlippedNormal: "flipped-normal", Tracer, Object(Any), Parameter::None, "normal",
+        "§4.4 the normal as computed", "the object's normal is reversed at every hit";
+    /// §7.4: the light is off.
+    NoLight: "no-light", Tracer, Light, Parameter::None, "light",
+        "§4.2 step 5 every light", "the light is off";
+    /// §7.4: the light's shadow rays are never blocked.
+    Unshadowed: "unshadowed", Tracer, Light, Parameter::None, "shadows",
+        "§4.3 the shadow test", "the light's shadow rays are never blocked";
+}
+
+impl Kind {
+    /// Its row of [`VARIANTS`].
+    pub fn row(self) -> &'static Row {
+        &VARIANTS[self as usize]
     }
 }
 
+/// A variant as given: which, its value (`max-dist=70`, `shadow-epsilon=1e-3`) and the
+/// line of the record it is scoped to (`@34`), if any.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Variant {
+    /// The row of [`VARIANTS`] that says what it replaces.
+    pub kind: Kind,
+    /// The parameter's value, where the row has one.
+    pub value: Option<f64>,
+    /// The line of the one record it applies to; `None` for the whole image.
+    pub line: Option<usize>,
+}
+
 impl Variant {
-    /// "what it does instead of the rule it replaces", with the variant's value.
+    /// The variant `kind` for the whole image, with its parameter's default (max-dist
+    /// takes the other term's 70).
+    pub fn of(kind: Kind) -> Variant {
+        let value = match kind.row().parameter {
+            Parameter::None => None,
+            Parameter::Optional(_, default) => Some(default),
+            Parameter::Required(_) => Some(70.0),
+        };
+        Variant {
+            kind,
+            value,
+            line: None,
+        }
+    }
+
+    /// The same variant for the one record on `line`.
+    pub fn at(self, line: usize) -> Variant {
+        Variant {
+            line: Some(line),
+            ..self
+        }
+    }
+
+    /// Every variant of the table that applies to a whole image, with its default value,
+    /// in the table's order (the edits that exist only scoped are left out).
+    pub fn all() -> impl Iterator<Item = Variant> {
+        VARIANTS
+            .iter()
+            .filter(|row| !matches!(row.scope, Scope::Object(_) | Scope::Light))
+            .map(|row| Variant::of(row.kind))
+    }
+
+    /// Every variant `compare --diagnose` tries on its own, in the table's order: those of
+    /// [`Variant::all`] but max-dist=D, whose D is estimated instead.
+    pub fn tried() -> impl Iterator<Item = Variant> {
+        Variant::all().filter(|v| v.kind != Kind::MaxDist)
+    }
+
+    /// The kernel this variant renders with, if it is one of the kernels'.
+    pub fn kernel(self) -> Option<KernelChoice> {
+        match self.kind {
+            Kind::Textbook => Some(KernelChoice::Textbook),
+            Kind::TextbookF32 => Some(KernelChoice::TextbookF32),
+            _ => None,
+        }
+    }
+
+    /// Its row of [`VARIANTS`]: id, rule, what it does instead.
+    pub fn row(self) -> &'static Row {
+        self.kind.row()
+    }
+
+    /// The id as `--variant` takes it back: `max-dist=70`, `shadow-epsilon=0.001@12`,
+    /// `no-shadow@12` (plain `shadow-epsilon` for the default ε).
+    pub fn id(self) -> String {
+        let row = self.row();
+        let mut id = row.id.to_string();
+        match (row.parameter, self.value) {
+            (Parameter::Required(_), Some(v)) => id += &format!("={v}"),
+            (Parameter::Optional(_, default), Some(v)) if v != default => id += &format!("={v}"),
+            _ => {}
+        }
+        if let Some(line) = self.line {
+            id += &format!("@{line}");
+        }
+        id
+    }
+
+    /// The id as the table and `--help` write it: `max-dist=D`, `shadow-epsilon[=E]`,
+    /// `no-shadow@LINE`, `facing-normals[@LINE]`.
+    pub fn pattern(row: &Row) -> String {
+        let mut id = row.id.to_string();
+        match row.parameter {
+            Parameter::None => {}
+            Parameter::Required(name) => id += &format!("={name}"),
+            Parameter::Optional(name, _) => id += &format!("[={name}]"),
+        }
+        match row.scope {
+            Scope::Image => {}
+            Scope::ImageOrObject(_) | Scope::ImageOrLight => id += "[@LINE]",
+            Scope::Object(_) | Scope::Light => id += "@LINE",
+        }
+        id
+    }
+
+    /// The variant named `text`: an id, with `=VALUE` where it takes one and `@LINE`
+    /// where it may be scoped.
+    pub fn parse(text: &str) -> Result<Variant, String> {
+        let (name, line) = match text.rsplit_once('@') {
+            Some((name, line)) => match line.parse::<usize>() {
+                Ok(line) if line > 0 => (name, Some(line)),
+                _ => return Err(format!("{text}: @ takes the line of a record, such as @12")),
+            },
+            None => (text, None),
+        };
+        let (id, value) = match name.split_once('=') {
+            Some((id, value)) => (id, Some(value)),
+            None => (name, None),
+        };
+        let Some(row) = VARIANTS.iter().find(|row| row.id == id) else {
+            let ids: Vec<String> = VARIANTS.iter().map(Variant::pattern).collect();
+            return Err(format!(
+                "unknown variant {text:?}; the variants are: {}",
+                ids.join(", ")
+            ));
+        };
+        let number = |value: &str| match value.parse::<f64>() {
+            Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
+            _ => Err(format!(
+                "{id}= takes a number greater than 0, found {value:?}"
+            )),
+        };
+        let value = match (row.parameter, value) {
+            (Parameter::None, None) => None,
+            (Parameter::None, Some(_)) => return Err(format!("{id} takes no value")),
+            (Parameter::Required(name), None) => {
+                return Err(format!(
+                    "{id} takes its value: {id}={name}, such as {id}=70"
+                ));
+            }
+            (Parameter::Optional(_, default), None) => Some(default),
+            (_, Some(value)) => Some(number(value)?),
+        };
+        match (row.scope, line) {
+            (Scope::Image, Some(_)) => {
+                return Err(format!(
+                    "{id} applies to the whole image; it takes no @LINE"
+                ));
+            }
+            (Scope::Object(_), None) => {
+                return Err(format!(
+                    "{id} applies to one object: {id}@LINE, with the line of its type code"
+                ));
+            }
+            (Scope::Light, None) => {
+                return Err(format!(
+                    "{id} applies to one light: {id}@LINE, with the line of its type code"
+                ));
+            }
+            _ => {}
+        }
+        Ok(Variant {
+            kind: row.kind,
+            value,
+            line,
+        })
+    }
+
+    /// "what it does instead of the rule it replaces", with the variant's value and scope.
     pub fn describe(self) -> String {
-        let about = self.about();
-        let instead = match self {
-            Variant::MaxDist(d) => format!("MAX_DIST {d}"),
-            Variant::ShadowEpsilon(e) => {
+        let row = self.row();
+        let instead = match (self.kind, self.value) {
+            (Kind::MaxDist, Some(d)) => format!("MAX_DIST {d}"),
+            (Kind::ShadowEpsilon, Some(e)) if self.line.is_none() => {
                 format!("rays leaving a surface test every object, counting hits with t > {e} only")
             }
-            _ => about.instead.to_string(),
+            (Kind::ShadowEpsilon, Some(e)) => {
+                format!("rays leaving it test every object, counting hits with t > {e} only")
+            }
+            _ => row.instead.to_string(),
         };
-        format!("{instead}, instead of {}", about.rule)
+        let scope = match self.line {
+            Some(line) => format!(" for the record on line {line}"),
+            None => String::new(),
+        };
+        format!("{instead}{scope}, instead of {}", row.rule)
     }
+}
+
+/// The table of [`VARIANTS`] as docs/variants.md shows it: a Markdown row per variant,
+/// with its id, the rule it replaces, what it does instead, and what it may apply to.
+pub fn markdown_table() -> String {
+    let mut table = String::from(
+        "| id | the rule of the spec it replaces | what it does instead | applies to |\n\
+         |---|---|---|---|\n",
+    );
+    for row in VARIANTS {
+        let applies = match row.scope {
+            Scope::Image => "the image".to_string(),
+            Scope::ImageOrObject(kinds) => format!("the image, or one of its {}", kinds.name()),
+            Scope::Object(kinds) => format!("one of the {}", kinds.name()),
+            Scope::ImageOrLight => "the image, or one light".to_string(),
+            Scope::Light => "one light".to_string(),
+        };
+        table += &format!(
+            "| `{}` | {} | {} | {applies} |\n",
+            Variant::pattern(row),
+            row.rule,
+            row.instead
+        );
+    }
+    table
+}
+
+/// A variant is written as its id (`no-shadow@12`), as `--variant` takes it back.
+impl serde::Serialize for Variant {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.serialize_str(&self.id())
+    }
+}
+
+/// Up to [`Variants::MOST`] variants, in the order given: a list that keeps [`Options`]
+/// `Copy`.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Variants {
+    list: [Option<Variant>; Variants::MOST],
+}
+
+impl Variants {
+    /// The most variants one render applies.
+    pub const MOST: usize = 16;
+
+    /// The variants, in order.
+    pub fn iter(&self) -> impl Iterator<Item = Variant> + '_ {
+        self.list.iter().map_while(|v| *v)
+    }
+
+    /// Whether there are none.
+    pub fn is_empty(&self) -> bool {
+        self.list[0].is_none()
+    }
+
+    fn push(&mut self, variant: Variant) -> Result<(), String> {
+        match self.list.iter_mut().find(|v| v.is_none()) {
+            Some(slot) => {
+                *slot = Some(variant);
+                Ok(())
+            }
+            None => Err(format!("at most {} variants apply at once", Variants::MOST)),
+        }
+    }
+}
+
+impl Options {
+    /// These options with `variant` applied; an error when a variant already applied
+    /// replaces the same rule for the same records (two byte rules, two divisors, two
+    /// kernels, two MAX_DISTs, shadow-epsilon twice for one object).
+    pub fn with_variant(&self, variant: Variant) -> Result<Options, String> {
+        let mut options = *self;
+        let conflict = |first: String| {
+            format!(
+                "the variants {first} and {} replace the same rule: give one of them",
+                variant.id()
+            )
+        };
+        match (variant.kind, variant.value) {
+            (Kind::MaxDist, Some(d)) => {
+                if self.max_dist != DEFAULT_MAX_DIST {
+                    return Err(conflict(format!("max-dist={}", self.max_dist)));
+                }
+                options.max_dist = d;
+            }
+            (Kind::Textbook | Kind::TextbookF32, _) => {
+                if self.kernel != KernelChoice::Accurate {
+                    return Err(conflict(self.kernel.name().to_string()));
+                }
+                options.kernel = match variant.kind {
+                    Kind::Textbook => KernelChoice::Textbook,
+                    _ => KernelChoice::TextbookF32,
+                };
+            }
+            _ => {
+                let group = variant.row().group;
+                let same_records = |other: Variant| {
+                    other.line.is_none() || variant.line.is_none() || other.line == variant.line
+                };
+                if let Some(first) = (self.variants.iter())
+                    .find(|&v| v.row().group == group && v.kind != variant.kind && same_records(v))
+                    .or_else(|| {
+                        // The same variant twice for one record, with two values.
+                        (self.variants.iter())
+                            .find(|&v| v.kind == variant.kind && v.line == variant.line)
+                            .filter(|v| v.value != variant.value)
+                    })
+                {
+                    return Err(conflict(first.id()));
+                }
+                options.variants.push(variant)?;
+            }
+        }
+        Ok(options)
+    }
+
+    /// The variants these options apply, the options' own (MAX_DIST, the kernel) included,
+    /// in the table's order.
+    pub fn all_variants(&self) -> Vec<Variant> {
+        let mut all: Vec<Variant> = self.variants.iter().collect();
+        if self.max_dist != DEFAULT_MAX_DIST {
+            all.push(Variant {
+                value: Some(self.max_dist),
+                ..Variant::of(Kind::MaxDist)
+            });
+        }
+        match self.kernel {
+            KernelChoice::Textbook => all.push(Variant::of(Kind::Textbook)),
+            KernelChoice::TextbookF32 => all.push(Variant::of(Kind::TextbookF32)),
+            _ => {}
+        }
+        all.sort_by_key(|v| (v.kind, v.line));
+        all
+    }
+
+    /// The output row that holds pixel row `y` (0 at the bottom): H - 1 - y (spec §4.1),
+    /// or y under upside-down. The map is its own inverse: it also gives the pixel row
+    /// that output row `y` holds.
+    pub fn row_of(&self, y: usize) -> usize {
+        let upside_down = self.variants.iter().any(|v| v.kind == Kind::UpsideDown);
+        if upside_down { y } else { self.height - 1 - y }
+    }
+}
+
+/// Checks that every scoped variant of `options` names the line of a record of the kind it
+/// applies to in `scene`; the error names the lines that would do.
+pub fn check_scopes(options: &Options, scene: &Scene) -> Result<(), String> {
+    for variant in options.variants.iter() {
+        let Some(line) = variant.line else { continue };
+        let row = variant.row();
+        let objects = |kinds: Kinds| -> Vec<usize> {
+            (scene.objects.iter())
+                .filter(|o| kinds.admit(&o.shape))
+                .map(|o| o.line)
+                .collect()
+        };
+        let (fits, kinds, what) = match row.scope {
+            Scope::ImageOrObject(kinds) | Scope::Object(kinds) => {
+                (objects(kinds), kinds.name(), "objects")
+            }
+            Scope::ImageOrLight | Scope::Light => {
+                let lines = scene.lights.iter().map(|l| l.line).collect();
+                (lines, "lights", "lights")
+            }
+            Scope::Image => continue,
+        };
+        if fits.contains(&line) {
+            continue;
+        }
+        let there = (scene.objects.iter().map(|o| (o.line, o.kind)))
+            .chain(scene.lights.iter().map(|l| (l.line, "light")))
+            .find(|&(at, _)| at == line)
+            .map(|(_, kind)| format!("line {line} starts a {kind}"))
+            .unwrap_or_else(|| format!("line {line} starts no record"));
+        let lines = match fits.is_empty() {
+            true => format!("the scene has no {kinds}"),
+            false => {
+                let list: Vec<String> = fits.iter().map(|l| l.to_string()).collect();
+                format!("the {kinds} start on lines {}", list.join(", "))
+            }
+        };
+        let _ = what;
+        return Err(format!(
+            "--variant {}: {there}; {} applies to {kinds}, and {lines}",
+            variant.id(),
+            row.id
+        ));
+    }
+    Ok(())
 }
 
 /// How a channel becomes a byte (spec §4.7 or a variant of it).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Bytes {
+pub(crate) enum Bytes {
     /// Clamp, ×255, truncate (spec §4.7).
     #[default]
     Truncate,
-    /// round-bytes.
+    /// round-bytes: floor(255 c + 0.5).
     Round,
-    /// scale-256.
+    /// scale-256: trunc(256 c), clamped to 255.
     Scale256,
 }
 
 impl Bytes {
     /// The byte of `channel` under this rule. NaN gives 0.
     #[inline]
-    pub fn byte(self, channel: f64) -> u8 {
+    pub(crate) fn byte(self, channel: f64) -> u8 {
         match self {
             Bytes::Truncate => to_byte(channel),
             _ if channel.is_nan() => 0,
@@ -278,297 +645,346 @@ impl Bytes {
 
 /// What step 6 of spec §4.2 divides by.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Divisor {
+pub(crate) enum Divisor {
     /// The path's cumulative length (spec §4.2).
     #[default]
     Path,
-    /// no-distance.
+    /// no-distance: no division.
     Nothing,
     /// segment-distance.
     Segment,
 }
 
-/// The deviations a render applies: none, for the image of spec §4-§5.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct Deviations {
-    /// pixel-centre.
-    pub pixel_centre: bool,
-    /// upside-down.
-    pub upside_down: bool,
-    /// round-bytes or scale-256.
-    pub bytes: Bytes,
-    /// no-distance or segment-distance.
-    pub divisor: Divisor,
-    /// square-falloff.
-    pub square_falloff: bool,
-    /// no-shadows.
-    pub no_shadows: bool,
-    /// shadow-epsilon's ε.
-    pub epsilon: Option<f64>,
-    /// facing-normals.
-    pub facing_normals: bool,
-    /// no-z-rule.
-    pub no_z_rule: bool,
-    /// tile-parity.
-    pub tile_parity: bool,
-    /// cone-scale.
-    pub cone_scale: bool,
-    /// nearer-root.
-    pub nearer_root: bool,
-    /// one-bounce.
-    pub one_bounce: bool,
+/// The rules one object follows where variants change them: a bit each, so that the
+/// tracer reads them in one load.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub(crate) struct ObjectRules(u8);
+
+impl ObjectRules {
+    const HIDDEN: u8 = 1;
+    const CASTS_NO_SHADOW: u8 = 1 << 1;
+    const UNLIT: u8 = 1 << 2;
+    const NO_MIRROR: u8 = 1 << 3;
+    const FLIPPED_NORMAL: u8 = 1 << 4;
+    const FACING_NORMALS: u8 = 1 << 5;
+
+    /// hidden: not a candidate for camera and mirror rays.
+    #[inline(always)]
+    pub(crate) fn hidden(self) -> bool {
+        self.0 & Self::HIDDEN != 0
+    }
+
+    /// no-shadow: never blocks a shadow ray.
+    #[inline(always)]
+    pub(crate) fn casts_no_shadow(self) -> bool {
+        self.0 & Self::CASTS_NO_SHADOW != 0
+    }
+
+    /// unlit: no light adds to it.
+    #[inline(always)]
+    pub(crate) fn unlit(self) -> bool {
+        self.0 & Self::UNLIT != 0
+    }
+
+    /// no-mirror: no reflected ray leaves it.
+    #[inline(always)]
+    pub(crate) fn no_mirror(self) -> bool {
+        self.0 & Self::NO_MIRROR != 0
+    }
+
+    /// flipped-normal: its normal reversed.
+    #[inline(always)]
+    pub(crate) fn flipped_normal(self) -> bool {
+        self.0 & Self::FLIPPED_NORMAL != 0
+    }
+
+    /// facing-normals: its normal turned toward the ray.
+    #[inline(always)]
+    pub(crate) fn facing_normals(self) -> bool {
+        self.0 & Self::FACING_NORMALS != 0
+    }
 }
 
-impl Deviations {
-    /// Whether any rule of the tracer deviates: every variant but those of the camera
-    /// (pixel-centre) and of the scene's geometry ([`Deviations::scene`]), which need no
-    /// deviating tracer.
-    pub fn in_tracer(&self) -> bool {
-        let Deviations {
-            pixel_centre: _,
-            no_z_rule: _,
-            tile_parity: _,
-            cone_scale: _,
-            upside_down,
-            nearer_root,
-            bytes,
-            divisor,
-            square_falloff,
-            no_shadows,
-            epsilon,
-            facing_normals,
-            one_bounce,
-        } = *self;
-        upside_down
-            || bytes != Bytes::Truncate
-            || divisor != Divisor::Path
-            || square_falloff
-            || no_shadows
-            || epsilon.is_some()
-            || facing_normals
-            || nearer_root
-            || one_bounce
+/// The rules one light follows where variants change them, a bit each.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub(crate) struct LightRules(u8);
+
+impl LightRules {
+    const OFF: u8 = 1;
+    const UNSHADOWED: u8 = 1 << 1;
+    const SQUARE_FALLOFF: u8 = 1 << 2;
+
+    /// no-light: the light adds nothing.
+    #[inline(always)]
+    pub(crate) fn off(self) -> bool {
+        self.0 & Self::OFF != 0
     }
 
-    /// The variants these deviations apply, in the order of spec §7.3.
-    pub fn variants(&self) -> Vec<Variant> {
-        let d = *self;
-        let divisor = match d.divisor {
-            Divisor::Path => None,
-            Divisor::Nothing => Some(Variant::NoDistance),
-            Divisor::Segment => Some(Variant::SegmentDistance),
-        };
-        let bytes = match d.bytes {
-            Bytes::Truncate => None,
-            Bytes::Round => Some(Variant::RoundBytes),
-            Bytes::Scale256 => Some(Variant::Scale256),
-        };
-        [
-            d.pixel_centre.then_some(Variant::PixelCentre),
-            d.upside_down.then_some(Variant::UpsideDown),
-            bytes,
-            divisor,
-            d.square_falloff.then_some(Variant::SquareFalloff),
-            d.no_shadows.then_some(Variant::NoShadows),
-            d.epsilon.map(Variant::ShadowEpsilon),
-            d.facing_normals.then_some(Variant::FacingNormals),
-            d.no_z_rule.then_some(Variant::NoZRule),
-            d.tile_parity.then_some(Variant::TileParity),
-            d.cone_scale.then_some(Variant::ConeScale),
-            d.nearer_root.then_some(Variant::NearerRoot),
-            d.one_bounce.then_some(Variant::OneBounce),
-        ]
-        .into_iter()
-        .flatten()
-        .collect()
+    /// unshadowed (or no-shadows): its shadow rays are never blocked.
+    #[inline(always)]
+    pub(crate) fn unshadowed(self) -> bool {
+        self.0 & Self::UNSHADOWED != 0
     }
 
-    /// The scene as the variants of its geometry change it: borrowed unchanged when none
-    /// applies.
-    pub fn scene<'a>(&self, scene: &'a Scene) -> Cow<'a, Scene> {
-        if !(self.no_z_rule || self.tile_parity || self.cone_scale) {
+    /// square-falloff: cos θ / dist².
+    #[inline(always)]
+    pub(crate) fn square_falloff(self) -> bool {
+        self.0 & Self::SQUARE_FALLOFF != 0
+    }
+}
+
+/// The rules of spec §4-§5 as a render applies them: as written, but where a variant
+/// replaces one. The tracer, the aggregate and the camera read these values where each
+/// rule lives.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub(crate) struct Rules {
+    /// pixel-centre: pixels sampled at their centres.
+    pub(crate) pixel_centre: bool,
+    /// upside-down: output row r holds pixel row r.
+    pub(crate) upside_down: bool,
+    /// §4.7's conversion.
+    pub(crate) bytes: Bytes,
+    /// §4.2 step 6's divisor.
+    pub(crate) divisor: Divisor,
+    /// one-bounce: at most this many reflected rays.
+    pub(crate) bounces: usize,
+    /// Per object, in the scene's order.
+    pub(crate) objects: Box<[ObjectRules]>,
+    /// Whether some object is hidden, and whether some casts no shadow: the aggregate
+    /// looks at each object's rules only then.
+    pub(crate) some_hidden: bool,
+    /// See `some_hidden`.
+    pub(crate) some_cast_no_shadow: bool,
+    /// Per object, shadow-epsilon's ε for the rays leaving it, where it applies.
+    pub(crate) epsilons: Option<Box<[Option<f64>]>>,
+    /// Per light, in the scene's order.
+    pub(crate) lights: Box<[LightRules]>,
+}
+
+impl Rules {
+    /// The rules of `options`' variants on `scene` (objects and lights by index). A scoped
+    /// variant whose line starts no record of its kind applies to nothing
+    /// ([`check_scopes`] tells the user first).
+    pub(crate) fn new(options: &Options, scene: &Scene) -> Rules {
+        let mut rules = Rules {
+            bounces: super::MAX_BOUNCES,
+            ..Rules::default()
+        };
+        let mut objects = vec![ObjectRules::default(); scene.objects.len()];
+        let mut epsilons = vec![None; scene.objects.len()];
+        let mut lights = vec![LightRules::default(); scene.lights.len()];
+        for variant in options.variants.iter() {
+            let scoped = |line: usize| variant.line.is_none_or(|at| at == line);
+            let object_indices: Vec<usize> = (scene.objects.iter().enumerate())
+                .filter(|(_, o)| scoped(o.line))
+                .map(|(i, _)| i)
+                .collect();
+            let light_indices: Vec<usize> = (scene.lights.iter().enumerate())
+                .filter(|(_, l)| scoped(l.line))
+                .map(|(i, _)| i)
+                .collect();
+            let mut set_objects = |bit: u8| {
+                object_indices.iter().for_each(|&i| objects[i].0 |= bit);
+            };
+            let mut set_lights = |bit: u8| {
+                light_indices.iter().for_each(|&i| lights[i].0 |= bit);
+            };
+            match variant.kind {
+                Kind::PixelCentre => rules.pixel_centre = true,
+                Kind::UpsideDown => rules.upside_down = true,
+                Kind::RoundBytes => rules.bytes = Bytes::Round,
+                Kind::Scale256 => rules.bytes = Bytes::Scale256,
+                Kind::NoDistance => rules.divisor = Divisor::Nothing,
+                Kind::SegmentDistance => rules.divisor = Divisor::Segment,
+                Kind::OneBounce => rules.bounces = 1,
+                Kind::ShadowEpsilon => {
+                    let epsilon = variant.value.unwrap_or(DEFAULT_EPSILON);
+                    object_indices
+                        .iter()
+                        .for_each(|&i| epsilons[i] = Some(epsilon));
+                }
+                Kind::FacingNormals => set_objects(ObjectRules::FACING_NORMALS),
+                Kind::Hidden => set_objects(ObjectRules::HIDDEN),
+                Kind::NoShadow => set_objects(ObjectRules::CASTS_NO_SHADOW),
+                Kind::Unlit => set_objects(ObjectRules::UNLIT),
+                Kind::NoMirror => set_objects(ObjectRules::NO_MIRROR),
+                Kind::FlippedNormal => set_objects(ObjectRules::FLIPPED_NORMAL),
+                Kind::NoShadows | Kind::Unshadowed => set_lights(LightRules::UNSHADOWED),
+                Kind::NoLight => set_lights(LightRules::OFF),
+                Kind::SquareFalloff => set_lights(LightRules::SQUARE_FALLOFF),
+                // The scene's (`Rules::scene`) and the options' own.
+                Kind::NoZRule
+                | Kind::TileParity
+                | Kind::ConeScale
+                | Kind::NearerRoot
+                | Kind::MaxDist
+                | Kind::Textbook
+                | Kind::TextbookF32 => {}
+            }
+        }
+        rules.some_hidden = objects.iter().any(|o| o.hidden());
+        rules.some_cast_no_shadow = objects.iter().any(|o| o.casts_no_shadow());
+        rules.objects = objects.into();
+        rules.epsilons = epsilons
+            .iter()
+            .any(Option::is_some)
+            .then(|| epsilons.into());
+        rules.lights = lights.into();
+        rules
+    }
+
+    /// Whether the tracer's rules are all as written (spec §4-§5): no variant of the
+    /// tracer or the hits applies, whatever those of the camera, the bytes or the scene
+    /// do. A render then reads them from [`AsWritten`].
+    pub(crate) fn as_written(&self) -> bool {
+        self.objects.iter().all(|o| *o == ObjectRules::default())
+            && self.lights.iter().all(|l| *l == LightRules::default())
+            && self.epsilons.is_none()
+            && self.bounces == super::MAX_BOUNCES
+            && self.divisor == Divisor::Path
+    }
+
+    /// A colour's bytes (spec §4.7, or round-bytes or scale-256).
+    #[inline(always)]
+    pub(crate) fn bytes(&self, colour: DVec3) -> [u8; 3] {
+        match self.bytes {
+            Bytes::Truncate => colour.to_array().map(to_byte),
+            rule => colour.to_array().map(|c| rule.byte(c)),
+        }
+    }
+
+    /// The scene as the variants of its geometry change it (no-z-rule, tile-parity,
+    /// cone-scale, nearer-root, on every record they apply to or on one): borrowed
+    /// unchanged when none applies.
+    pub(crate) fn scene<'a>(options: &Options, scene: &'a Scene) -> Cow<'a, Scene> {
+        let in_scene = |v: &Variant| v.row().site == Site::Scene;
+        if !options.variants.iter().any(|v| in_scene(&v)) {
             return Cow::Borrowed(scene);
         }
         let mut scene = scene.clone();
-        for object in &mut scene.objects {
-            if self.tile_parity
-                && let Pattern::Tiles { background, .. } = &mut object.pattern
-            {
-                // Even relx + rely now picks the first material: the same as swapping the
-                // two materials under the odd rule.
-                std::mem::swap(&mut object.material, background);
-            }
-            let shape = &mut object.shape;
-            if self.cone_scale
-                && let Shape::Cone(cone) = shape
-            {
-                let size = cone.size;
-                *cone = Cone::with_k(
-                    cone.equation.frame.clone(),
-                    size,
-                    size.radius.powi(2) / size.height,
-                );
-            }
-            if self.no_z_rule
-                && let Some(plane) = shape.plane_mut()
-            {
-                plane.z_rule = false;
+        for variant in options.variants.iter().filter(in_scene) {
+            let objects = (scene.objects.iter_mut())
+                .filter(|object| variant.line.is_none_or(|line| object.line == line));
+            for object in objects {
+                match variant.kind {
+                    Kind::TileParity => {
+                        if let Pattern::Tiles { background, .. } = &mut object.pattern {
+                            // Even relx + rely now picks the first material: the same as
+                            // swapping the two materials under the odd rule.
+                            std::mem::swap(&mut object.material, background);
+                        }
+                    }
+                    Kind::ConeScale => {
+                        if let Shape::Cone(cone) = &mut object.shape {
+                            let size = cone.size;
+                            let frame = cone.equation.frame.clone();
+                            *cone = Cone::with_k(frame, size, size.radius.powi(2) / size.height);
+                        }
+                    }
+                    Kind::NoZRule => {
+                        if let Some(plane) = object.shape.plane_mut() {
+                            plane.z_rule = false;
+                        }
+                    }
+                    Kind::NearerRoot => {
+                        if let Some(quadric) = object.shape.bounded_axis_quadric_mut() {
+                            quadric.smaller_root_only();
+                        }
+                    }
+                    _ => {}
+                }
             }
         }
         Cow::Owned(scene)
     }
 }
 
-/// The variant nearer-root from a quadric 21-24's own notes: its smaller root counts if
-/// the shape accepted it, and no other root is tried (spec §7.3).
-#[derive(Debug, Default)]
-pub(crate) struct FirstRoot(Option<Option<f64>>);
-
-impl FirstRoot {
-    /// The smaller root's t if it counted.
-    pub(crate) fn t(&self) -> Option<f64> {
-        self.0.flatten()
-    }
-
-    /// The same from notes already taken: the first root's t if it counted. The notes
-    /// after that root are dropped (the variant never computes them).
-    pub(crate) fn of(notes: &mut Vec<HitNote>) -> Option<f64> {
-        let mut first = FirstRoot::default();
-        let end = notes.iter().position(|&note| {
-            first.note(note);
-            first.0.is_some()
-        });
-        notes.truncate(end.map_or(notes.len(), |end| end + 1));
-        first.t()
-    }
+/// Where the tracer and the aggregate read the rules of spec §4-§5 that variants replace:
+/// each method is the rule's value at its site. A render with variants reads its [`Rules`];
+/// the plain render reads [`AsWritten`], whose answers are constants, so that the rules
+/// as written cost it nothing (measured in docs/architecture.md: the plain render with
+/// `&Rules` took 11 % more instructions on the course scene spec1).
+pub(crate) trait Rulebook: Copy + Send + Sync {
+    /// Object `index`'s rules.
+    fn object(self, index: usize) -> ObjectRules;
+    /// Light `index`'s rules.
+    fn light(self, index: usize) -> LightRules;
+    /// shadow-epsilon's ε for rays leaving object `index`, if it applies.
+    fn epsilon(self, index: usize) -> Option<f64>;
+    /// Whether some object is hidden (camera and mirror rays then ask each object).
+    fn some_hidden(self) -> bool;
+    /// Whether some object casts no shadow (shadow rays then ask each object).
+    fn some_cast_no_shadow(self) -> bool;
+    /// The most reflected rays per camera ray (spec §4.5, or one-bounce).
+    fn bounces(self) -> usize;
+    /// What step 6 of spec §4.2 divides by.
+    fn divisor(self) -> Divisor;
 }
 
-impl Notes for FirstRoot {
-    #[inline]
-    fn note(&mut self, note: HitNote) {
-        if let (None, HitNote::Root { t, verdict, .. }) = (self.0, note) {
-            self.0 = Some((verdict == Verdict::Counts).then_some(t));
-        }
+/// The rules of spec §4-§5 as written, known when the tracer is compiled.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct AsWritten;
+
+impl Rulebook for AsWritten {
+    #[inline(always)]
+    fn object(self, _: usize) -> ObjectRules {
+        ObjectRules::default()
     }
-}
-
-/// A rule that two variants both replace: they cannot apply together.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Conflict {
-    /// The variant given first.
-    pub first: String,
-    /// The one that replaces the same rule.
-    pub second: String,
-}
-
-impl std::fmt::Display for Conflict {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(
-            f,
-            "the variants {} and {} replace the same rule: give one of them",
-            self.first, self.second
-        )
+    #[inline(always)]
+    fn light(self, _: usize) -> LightRules {
+        LightRules::default()
     }
-}
-
-impl Options {
-    /// These options with `variant` applied; an error when a variant already applied
-    /// replaces the same rule (two byte rules, two divisors, two kernels, two MAX_DISTs).
-    pub fn with_variant(&self, variant: Variant) -> Result<Options, Conflict> {
-        let mut options = *self;
-        let d = &mut options.deviations;
-        let taken = |before: Option<Variant>| -> Result<(), Conflict> {
-            match before {
-                Some(first) => Err(Conflict {
-                    first: first.id(),
-                    second: variant.id(),
-                }),
-                None => Ok(()),
-            }
-        };
-        match variant {
-            Variant::PixelCentre => d.pixel_centre = true,
-            Variant::UpsideDown => d.upside_down = true,
-            Variant::RoundBytes | Variant::Scale256 => {
-                taken(match d.bytes {
-                    Bytes::Truncate => None,
-                    Bytes::Round => Some(Variant::RoundBytes),
-                    Bytes::Scale256 => Some(Variant::Scale256),
-                })?;
-                d.bytes = match variant {
-                    Variant::RoundBytes => Bytes::Round,
-                    _ => Bytes::Scale256,
-                };
-            }
-            Variant::NoDistance | Variant::SegmentDistance => {
-                taken(match d.divisor {
-                    Divisor::Path => None,
-                    Divisor::Nothing => Some(Variant::NoDistance),
-                    Divisor::Segment => Some(Variant::SegmentDistance),
-                })?;
-                d.divisor = match variant {
-                    Variant::NoDistance => Divisor::Nothing,
-                    _ => Divisor::Segment,
-                };
-            }
-            Variant::SquareFalloff => d.square_falloff = true,
-            Variant::NoShadows => d.no_shadows = true,
-            Variant::ShadowEpsilon(e) => {
-                taken(d.epsilon.map(Variant::ShadowEpsilon))?;
-                d.epsilon = Some(e);
-            }
-            Variant::FacingNormals => d.facing_normals = true,
-            Variant::NoZRule => d.no_z_rule = true,
-            Variant::TileParity => d.tile_parity = true,
-            Variant::ConeScale => d.cone_scale = true,
-            Variant::NearerRoot => d.nearer_root = true,
-            Variant::OneBounce => d.one_bounce = true,
-            Variant::MaxDist(dist) => {
-                let before = self.max_dist != DEFAULT_MAX_DIST;
-                taken(before.then_some(Variant::MaxDist(self.max_dist)))?;
-                options.max_dist = dist;
-            }
-            Variant::Kernel(kernel) => {
-                let before = self.kernel != KernelChoice::Accurate;
-                taken(before.then_some(Variant::Kernel(self.kernel)))?;
-                options.kernel = kernel;
-            }
-        }
-        Ok(options)
+    #[inline(always)]
+    fn epsilon(self, _: usize) -> Option<f64> {
+        None
     }
-
-    /// The output row that holds pixel row `y` (0 at the bottom): H - 1 - y (spec §4.1),
-    /// or y under upside-down. The map is its own inverse: it also gives the pixel row
-    /// that output row `y` holds.
-    pub fn row_of(&self, y: usize) -> usize {
-        if self.deviations.upside_down {
-            y
-        } else {
-            self.height - 1 - y
-        }
+    #[inline(always)]
+    fn some_hidden(self) -> bool {
+        false
+    }
+    #[inline(always)]
+    fn some_cast_no_shadow(self) -> bool {
+        false
+    }
+    #[inline(always)]
+    fn bounces(self) -> usize {
+        super::MAX_BOUNCES
+    }
+    #[inline(always)]
+    fn divisor(self) -> Divisor {
+        Divisor::Path
     }
 }
 
-/// Whether the tracer applies [`Deviations`]: a type, so that a render without variants
-/// compiles without them.
-pub trait Rules: Send + Sync + 'static {
-    /// False for the image of spec §4-§5: every deviation's test is then false at
-    /// compile time.
-    const DEVIATES: bool;
-}
-
-/// The rules of spec §4-§5, as written.
-pub struct AsSpecified;
-
-impl Rules for AsSpecified {
-    const DEVIATES: bool = false;
-}
-
-/// The rules with [`Options::deviations`] applied.
-pub struct Deviating;
-
-impl Rules for Deviating {
-    const DEVIATES: bool = true;
+impl Rulebook for &Rules {
+    #[inline(always)]
+    fn object(self, index: usize) -> ObjectRules {
+        self.objects[index]
+    }
+    #[inline(always)]
+    fn light(self, index: usize) -> LightRules {
+        self.lights[index]
+    }
+    #[inline(always)]
+    fn epsilon(self, index: usize) -> Option<f64> {
+        self.epsilons.as_ref().and_then(|epsilons| epsilons[index])
+    }
+    #[inline(always)]
+    fn some_hidden(self) -> bool {
+        self.some_hidden
+    }
+    #[inline(always)]
+    fn some_cast_no_shadow(self) -> bool {
+        self.some_cast_no_shadow
+    }
+    #[inline(always)]
+    fn bounces(self) -> usize {
+        self.bounces
+    }
+    #[inline(always)]
+    fn divisor(self) -> Divisor {
+        self.divisor
+    }
 }
 
 #[cfg(test)]
@@ -580,15 +996,44 @@ mod tests {
         for variant in Variant::all() {
             assert_eq!(Variant::parse(&variant.id()), Ok(variant));
         }
-        let epsilon = Variant::ShadowEpsilon(1e-3);
+        let epsilon = Variant {
+            value: Some(1e-3),
+            ..Variant::of(Kind::ShadowEpsilon)
+        };
         assert_eq!(Variant::parse("shadow-epsilon=0.001"), Ok(epsilon));
+        assert_eq!(
+            Variant::parse("shadow-epsilon=0.001@12"),
+            Ok(epsilon.at(12))
+        );
+        assert_eq!(epsilon.at(12).id(), "shadow-epsilon=0.001@12");
+        let hidden = Variant::of(Kind::Hidden).at(7);
+        assert_eq!(Variant::parse("hidden@7"), Ok(hidden));
         assert!(Variant::parse("max-dist").is_err());
         assert!(Variant::parse("max-dist=-4").is_err());
+        assert!(
+            Variant::parse("hidden")
+                .unwrap_err()
+                .contains("hidden@LINE")
+        );
+        assert!(
+            Variant::parse("upside-down@3")
+                .unwrap_err()
+                .contains("whole image")
+        );
+        assert!(Variant::parse("no-shadow@x").is_err());
         assert!(
             Variant::parse("upside")
                 .unwrap_err()
                 .contains("pixel-centre")
         );
+    }
+
+    #[test]
+    fn the_table_s_rows_are_in_the_order_of_their_kinds() {
+        // `Kind::row` indexes the table by the kind.
+        for (index, row) in VARIANTS.iter().enumerate() {
+            assert_eq!(row.kind as usize, index, "{}", row.id);
+        }
     }
 
     #[test]
@@ -604,47 +1049,58 @@ mod tests {
     }
 
     #[test]
-    fn deviations_name_the_variants_that_made_them() {
-        let mut options = Options::new(4, 3);
-        for variant in Variant::TRIED {
-            if let Variant::Kernel(_) = variant {
-                continue;
-            }
-            options = options.with_variant(variant).unwrap_or(options);
-        }
-        let ids: Vec<_> = options
-            .deviations
-            .variants()
-            .iter()
-            .map(|v| v.id())
-            .collect();
-        let expected = [
-            "pixel-centre",
-            "upside-down",
-            "round-bytes",
-            "no-distance",
-            "square-falloff",
-            "no-shadows",
-            "shadow-epsilon",
-            "facing-normals",
-            "no-z-rule",
-            "tile-parity",
-            "cone-scale",
-            "nearer-root",
-            "one-bounce",
-        ];
-        assert_eq!(ids, expected);
+    fn two_variants_of_one_rule_conflict() {
+        let options = Options::new(4, 3)
+            .with_variant(Variant::of(Kind::RoundBytes))
+            .unwrap();
+        assert!(options.with_variant(Variant::of(Kind::Scale256)).is_err());
+        assert!(options.with_variant(Variant::of(Kind::NoDistance)).is_ok());
+        let seventy = Variant::of(Kind::MaxDist);
+        let far = options.with_variant(seventy).unwrap();
+        assert_eq!(far.max_dist, 70.0);
+        let fifty = Variant {
+            value: Some(50.0),
+            ..seventy
+        };
+        assert!(far.with_variant(fifty).is_err());
+        // Scoped to two records, one rule does not conflict; to one record, it does.
+        let at = |line| Variant::of(Kind::FlippedNormal).at(line);
+        let one = Options::new(4, 3).with_variant(at(4)).unwrap();
+        assert!(one.with_variant(at(11)).is_ok());
+        assert!(
+            one.with_variant(Variant::of(Kind::FacingNormals).at(4))
+                .is_err()
+        );
+        assert!(
+            one.with_variant(Variant::of(Kind::FacingNormals).at(11))
+                .is_ok()
+        );
     }
 
     #[test]
-    fn two_variants_of_one_rule_conflict() {
+    fn the_rules_of_scoped_variants_fall_on_their_record_only() {
+        let text = "8 6\n0 0 3\n13\n1 1 1\n1 1 1\n0 0 0\n0 0 -3\n1\n\
+                    10\n1 1 1\n0 5 0\n13\n1 1 1\n1 1 1\n0 0 0\n2 0 -3\n1\n";
+        let scene = crate::load(text).unwrap();
         let options = Options::new(4, 3)
-            .with_variant(Variant::RoundBytes)
+            .with_variant(Variant::of(Kind::NoShadow).at(12))
+            .and_then(|o| o.with_variant(Variant::of(Kind::NoLight).at(9)))
             .unwrap();
-        assert!(options.with_variant(Variant::Scale256).is_err());
-        assert!(options.with_variant(Variant::NoDistance).is_ok());
-        let far = options.with_variant(Variant::MaxDist(70.0)).unwrap();
-        assert_eq!(far.max_dist, 70.0);
-        assert!(far.with_variant(Variant::MaxDist(50.0)).is_err());
+        let rules = Rules::new(&options, &scene);
+        assert!(!rules.objects[0].casts_no_shadow() && rules.objects[1].casts_no_shadow());
+        assert!(rules.lights[0].off());
+        // A line that starts no record of the kind is an error naming those that do.
+        let wrong = Options::new(4, 3)
+            .with_variant(Variant::of(Kind::ConeScale).at(3))
+            .unwrap();
+        let error = check_scopes(&wrong, &scene).unwrap_err();
+        assert!(error.contains("line 3 starts a sphere"), "{error}");
+        assert!(error.contains("has no cones"), "{error}");
+        let light = Options::new(4, 3)
+            .with_variant(Variant::of(Kind::NoLight).at(3))
+            .unwrap();
+        let error = check_scopes(&light, &scene).unwrap_err();
+        assert!(error.contains("the lights start on lines 9"), "{error}");
+        assert!(check_scopes(&options, &scene).is_ok());
     }
 }

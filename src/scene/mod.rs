@@ -1,6 +1,6 @@
 //! Meaning: records to a validated, typed scene (spec §3-§5).
 //!
-//! [`load`] runs the whole front end: [`crate::scene_file`] reads the text into records,
+//! [`load`] runs the whole front end: `scene_file` reads the text into records,
 //! and as it reads them `build` turns each into a light or an [`Object`], validating its numbers
 //! and precomputing everything that depends only on the object (frames, `rotmat`, `irot`,
 //! `k`, unit normals, spotlight cosines, textures).
@@ -8,6 +8,7 @@
 mod build;
 pub(crate) mod dump;
 
+pub use crate::scene_file::MAX_RECORDS;
 pub use dump::dump;
 
 use crate::error::SceneError;
@@ -97,7 +98,7 @@ pub struct Beam {
 pub struct Light {
     /// Emissivity rgb.
     pub emissivity: DVec3,
-    /// Location.
+    /// Where the light is; it shines in every direction (a spotlight within its beam).
     pub location: DVec3,
     /// The beam of a spotlight; `None` for a point light.
     pub beam: Option<Beam>,
@@ -152,14 +153,14 @@ pub enum Pattern {
     Texture {
         /// The texture, shared if the scene is cloned.
         texture: Arc<Texture>,
-        /// Fit or tile.
+        /// How the texture covers the rectangle: stretched once (fit) or repeated (tile).
         mode: TextureMode,
         /// The rectangle's width and height, over which fit mode stretches the texture.
         size: DVec2,
     },
     /// 19, 20: a shader replacing the ambient (spec §5.5).
     Shader {
-        /// Which shader.
+        /// The shader the record's index names.
         shader: Shader,
         /// The sphere's centre or the plane's point: the shader's origin.
         origin: DVec3,
@@ -169,7 +170,7 @@ pub enum Pattern {
 /// A visible object: a shape, its material and how the material varies.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Object {
-    /// The geometry.
+    /// The geometry: what a ray hits and the normal there.
     pub shape: Shape,
     /// The material (for tiled planes, the foreground tiles').
     pub material: Material,
@@ -186,7 +187,7 @@ pub struct Object {
 pub struct Scene {
     /// World window width and height, centred on the origin in z = 0 (spec §2.1).
     pub window: DVec2,
-    /// The eye.
+    /// The eye: every camera ray starts here (spec §4.1).
     pub viewpoint: DVec3,
     /// Lights in file order.
     pub lights: Vec<Light>,

@@ -68,7 +68,7 @@ pub(crate) struct Group {
     pub(crate) label: &'static str,
     /// Byte offset of its first token.
     pub(crate) at: usize,
-    /// Its contents.
+    /// Its numbers with their positions, or the text of a texture name.
     pub(crate) data: GroupData,
 }
 
@@ -118,7 +118,7 @@ impl Group {
 pub(crate) struct SceneText {
     /// The world window width and height.
     pub(crate) window: Group,
-    /// The viewpoint.
+    /// The viewpoint group: x y z.
     pub(crate) viewpoint: Group,
     /// The records, in file order.
     pub(crate) records: Vec<Record>,

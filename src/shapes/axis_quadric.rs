@@ -15,12 +15,11 @@
 //!
 //! A ray L = B' + t D' turns it into a t² + b t + c = 0 with
 //! a = Σ αᵢ D'ᵢ², b = 2 Σ αᵢ B'ᵢ D'ᵢ + β D'y, c = f(B'): exactly the coefficients that
-//! note 003 writes out shape by shape. [`AxisQuadric::hit`] is note 003's algorithm,
-//! written once for all five shapes; the kernels of [`super::kernel`] supply its
-//! arithmetic.
+//! note 003 writes out shape by shape ([`coefficients`]). The kernels of
+//! `src/shapes/kernel/` solve it, each in its own arithmetic; the rule that picks the
+//! root (spec §5.2, §5.6) is [`RootRule`]'s, shared by them all.
 
-use super::kernel::{Kernel, Steps, Tangent};
-use super::{AxisFrame, HitNote, Invalid, Notes, Parameter, Ray, Verdict, positive};
+use super::{AxisFrame, HitNote, Invalid, Notes, Parameter, Verdict, positive};
 use glam::DVec3;
 use num_traits::Float;
 
@@ -46,6 +45,14 @@ pub enum RootRule {
         /// Highest local y.
         high: f64,
     },
+    /// The variant nearer-root (spec §7.3): the smaller root only, if it is positive and
+    /// within `[low, high]`; the other root is never tried.
+    SmallerWithin {
+        /// Lowest local y.
+        low: f64,
+        /// Highest local y.
+        high: f64,
+    },
 }
 
 /// A quadric of the form above, with its frame and root rule.
@@ -53,11 +60,11 @@ pub enum RootRule {
 pub struct AxisQuadric {
     /// Centre point and rotation (the identity for a sphere).
     pub frame: AxisFrame,
-    /// (αx, αy, αz).
+    /// The coefficients (αx, αy, αz) of Lx², Ly², Lz².
     pub alpha: DVec3,
     /// β, the coefficient of Ly.
     pub linear_y: f64,
-    /// γ.
+    /// γ, the constant term.
     pub constant: f64,
     /// Which root counts.
     pub rule: RootRule,
@@ -69,6 +76,17 @@ impl RootRule {
         RootRule::FirstPositiveWithin { low, high }
     }
 
+    /// The bounds of local y, (-∞, ∞) for the sphere.
+    #[inline(always)]
+    pub fn bounds(self) -> (f64, f64) {
+        match self {
+            RootRule::Nearer => (f64::NEG_INFINITY, f64::INFINITY),
+            RootRule::FirstPositiveWithin { low, high } | RootRule::SmallerWithin { low, high } => {
+                (low, high)
+            }
+        }
+    }
+
     /// Whether a root at distance `t` whose point has local y `y` counts: in front of the
     /// base and within the bounds, or within `slack()` of them (a kernel's allowance for
     /// the rounding of y, computed only when y is outside).
@@ -76,11 +94,40 @@ impl RootRule {
     pub fn accepts(self, t: f64, y: f64, slack: impl FnOnce() -> f64) -> bool {
         match self {
             RootRule::Nearer => true,
-            RootRule::FirstPositiveWithin { low, high } => {
+            RootRule::FirstPositiveWithin { low, high } | RootRule::SmallerWithin { low, high } => {
                 let within = |slack: f64| low - slack <= y && y <= high + slack;
                 t > 0.0 && (within(0.0) || within(slack()))
             }
         }
+    }
+
+    /// Note 003's choice among the two real roots, ascending: "if the y of the hit is out
+    /// of bounds, try the other root" (spec §5.6), and under nearer-root the smaller one
+    /// only. `judge(index, root)` gives a root's t, local y and whether it counts, in the
+    /// kernel's arithmetic; each is told to `notes` with its verdict.
+    #[inline(always)]
+    pub(crate) fn first_within<R>(
+        self,
+        roots: [R; 2],
+        mut judge: impl FnMut(usize, R) -> (f64, f64, bool),
+        notes: &mut impl Notes,
+    ) -> Option<f64> {
+        for (index, root) in roots.into_iter().enumerate() {
+            let (t, y, counts) = judge(index, root);
+            let verdict = match counts {
+                true => Verdict::Counts,
+                false if t <= 0.0 => Verdict::Behind,
+                false => Verdict::OutOfBounds,
+            };
+            notes.note(HitNote::Root { t, y, verdict });
+            if counts {
+                return Some(t);
+            }
+            if let RootRule::SmallerWithin { .. } = self {
+                return None;
+            }
+        }
+        None
     }
 }
 
@@ -131,67 +178,6 @@ impl AxisQuadric {
         Ok((frame, Size { radius, height }))
     }
 
-    /// Where `ray` meets the surface (spec §5.2, §5.6), step by step as note 003 computes
-    /// it; kernel `K` does the arithmetic of each step. The caller keeps only t > 0: the
-    /// sphere's nearer root may be negative (a ray from inside).
-    #[inline(always)]
-    pub fn hit<K: Kernel>(&self, ray: &Ray) -> Option<f64> {
-        self.hit_noted::<K>(ray, &mut ())
-    }
-
-    /// [`AxisQuadric::hit`], telling `notes` why it decided as it did (`legacy-rt trace`;
-    /// with `()` the notes cost nothing).
-    #[inline(always)]
-    pub fn hit_noted<K: Kernel>(&self, ray: &Ray, notes: &mut impl Notes) -> Option<f64> {
-        // Note 003: "transform the ray into the object's coordinate system": translate by
-        // the base centre, rotate by rotmat. B' = rotmat (B - C), D' = rotmat D.
-        let local = K::local_ray(&self.frame, ray);
-        // "a = dx² + dz², b = 2(bx dx + bz dz), c = bx² + bz² - r²" for the cylinder, and
-        // the other rows of the table above.
-        let abc = K::coefficients(self, &local);
-        let steps = Steps::new(self, ray, &local, abc);
-        match self.rule {
-            // The sphere: the smaller root of the discriminant > 0, even when negative.
-            RootRule::Nearer => {
-                let Some(root) = K::nearer_root(abc) else {
-                    notes.note(HitNote::NoRealRoot);
-                    return None;
-                };
-                let t = K::nearer_distance(&steps, root);
-                notes.note(HitNote::Nearer { t });
-                t
-            }
-            // "t = (-b ± sqrt(b² - 4ac)) / 2a", then "if the y of the hit is out of
-            // bounds, try the other root": the smallest t > 0 whose y is within bounds.
-            RootRule::FirstPositiveWithin { low, high } => {
-                let Some(roots) = K::roots(abc, Tangent::Counts) else {
-                    notes.note(HitNote::NoRealRoot);
-                    return None;
-                };
-                for (index, root) in roots.into_iter().enumerate() {
-                    let (t, y) = match K::distance_and_height(&steps, root, index, (low, high)) {
-                        Ok((t, y)) if self.rule.accepts(t, y, || K::bound_slack(&local, t)) => {
-                            notes.note(HitNote::Root {
-                                t,
-                                y,
-                                verdict: Verdict::Counts,
-                            });
-                            return Some(t);
-                        }
-                        Ok(point) | Err(point) => point,
-                    };
-                    let verdict = if t <= 0.0 {
-                        Verdict::Behind
-                    } else {
-                        Verdict::OutOfBounds
-                    };
-                    notes.note(HitNote::Root { t, y, verdict });
-                }
-                None
-            }
-        }
-    }
-
     /// f at a local point, in f64.
     #[inline]
     pub fn value(&self, local: DVec3) -> f64 {
@@ -204,6 +190,14 @@ impl AxisQuadric {
         let (square, linear_y, constant) = (self.alpha, self.linear_y, self.constant);
         let [base, dir] = [base, dir].map(|v| v.to_array());
         coefficients(square.to_array(), linear_y, constant, base, dir)
+    }
+
+    /// The same quadric under the variant nearer-root (spec §7.3): only the smaller root
+    /// is tried. The sphere's rule is already the nearer root.
+    pub(crate) fn smaller_root_only(&mut self) {
+        if let RootRule::FirstPositiveWithin { low, high } = self.rule {
+            self.rule = RootRule::SmallerWithin { low, high };
+        }
     }
 
     /// The unit world normal at a world point: ∇f in the local frame, turned back by
@@ -244,7 +238,7 @@ impl AxisQuadric {
                 (-r, r)
             }
             RootRule::Nearer => return None,
-            RootRule::FirstPositiveWithin { low, high } => (low, high),
+            rule => rule.bounds(),
         };
         // The squared radius at height y, x² + z² = -(αy y² + β y + γ) / αx, is largest
         // at an end of [low, high] or at its vertex.

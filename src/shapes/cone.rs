@@ -11,7 +11,8 @@
 //! ```
 //! Local frame: axis +y, apex at the origin; surface x² + z² = k y² with k = (r/h)².
 //!
-//! Its hit is note 003's algorithm, [`AxisQuadric::hit`], on the cone's row:
+//! Its hit is note 003's algorithm (`src/shapes/kernel/textbook.rs`, and the shipped
+//! kernel's own arithmetic, under the rule [`RootRule`](super::RootRule)), on the cone's row:
 //! a = dx² + dz² - k dy², b = 2(bx dx + bz dz - k by dy), c = bx² + bz² - k by², the
 //! smallest positive root with 0 <= y <= h; along a generator a = 0 (the linear case).
 //! Its normal ([`AxisQuadric::normal`]) is the local (2x, -2k y, 2z), turned back by
@@ -65,7 +66,7 @@ mod tests {
     #[test]
     fn horizontal_ray_hits_where_the_radius_equals_the_height() {
         let ray = Ray::new(DVec3::new(-3.0, 0.5, 0.0), DVec3::X);
-        assert_eq!(cone().equation.hit::<Accurate>(&ray), Some(2.5));
+        assert_eq!(hit(&cone().equation, &ray), Some(2.5));
         let n = cone().equation.normal(DVec3::new(-0.5, 0.5, 0.0));
         let expected = DVec3::new(-1.0, -1.0, 0.0) / 2f64.sqrt();
         assert!((n - expected).length() < 1e-15, "{n}");
@@ -81,13 +82,13 @@ mod tests {
         };
         // Then b = 2(bx dx - k by dy) = -√2 and c = bx² = 1, so t = -c/b = 1/√2: the point
         // (-0.5, 0.5, 0) of the generator x = -y.
-        let t = cone().equation.hit::<Accurate>(&ray).unwrap();
+        let t = hit(&cone().equation, &ray).unwrap();
         assert!((t - 0.5f64.sqrt()).abs() < 1e-15, "{t}");
     }
 
     #[test]
     fn the_lower_nappe_is_out_of_bounds() {
         let ray = Ray::new(DVec3::new(-3.0, -0.5, 0.0), DVec3::X);
-        assert_eq!(cone().equation.hit::<Accurate>(&ray), None);
+        assert_eq!(hit(&cone().equation, &ray), None);
     }
 }

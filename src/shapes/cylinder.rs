@@ -11,7 +11,8 @@
 //! ```
 //! Local frame: axis +y, base centre at the origin; surface x² + z² = r², 0 <= y <= h.
 //!
-//! Its hit is note 003's algorithm, [`AxisQuadric::hit`], on the cylinder's row:
+//! Its hit is note 003's algorithm (`src/shapes/kernel/textbook.rs`, and the shipped
+//! kernel's own arithmetic, under the rule [`RootRule`](super::RootRule)), on the cylinder's row:
 //! a = dx² + dz², b = 2(bx dx + bz dz), c = bx² + bz² - r², the smallest positive root
 //! with 0 <= y <= h. Its normal ([`AxisQuadric::normal`]) is the local (x, 0, z), turned
 //! back by `irot`.
@@ -52,7 +53,7 @@ mod tests {
     fn ray_across_the_axis_hits_the_near_wall() {
         let ray = Ray::new(DVec3::new(6.0, 3.0, 0.0), DVec3::NEG_Z);
         // The wall is at z = -4 + 2 = -2.
-        assert_eq!(cylinder().equation.hit::<Accurate>(&ray), Some(2.0));
+        assert_eq!(hit(&cylinder().equation, &ray), Some(2.0));
         let normal = cylinder().equation.normal(DVec3::new(6.0, 3.0, -2.0));
         assert!((normal - DVec3::Z).length() < 1e-15, "{normal}");
     }
@@ -60,15 +61,15 @@ mod tests {
     #[test]
     fn out_of_bounds_and_axis_parallel_rays_miss() {
         let beyond = Ray::new(DVec3::new(9.5, 3.0, 0.0), DVec3::NEG_Z);
-        assert_eq!(cylinder().equation.hit::<Accurate>(&beyond), None);
+        assert_eq!(hit(&cylinder().equation, &beyond), None);
         // Parallel to the axis: a = 0 and b = 0, no root and no division by zero.
         let inside_parallel = Ray::new(DVec3::new(0.0, 3.0, -4.0), DVec3::X);
-        assert_eq!(cylinder().equation.hit::<Accurate>(&inside_parallel), None);
+        assert_eq!(hit(&cylinder().equation, &inside_parallel), None);
     }
 
     #[test]
     fn from_inside_the_far_wall_is_hit() {
         let ray = Ray::new(DVec3::new(5.0, 3.0, -4.0), DVec3::Y);
-        assert_eq!(cylinder().equation.hit::<Accurate>(&ray), Some(2.0));
+        assert_eq!(hit(&cylinder().equation, &ray), Some(2.0));
     }
 }

@@ -52,16 +52,10 @@ impl FinitePlane {
     }
 
     /// The plane's hit (spec §5.1) with kernel `K`, if q = rot (H - point) lies in the
-    /// rectangle, edges included (spec §5.3).
+    /// rectangle, edges included (spec §5.3); `notes` are told why.
     #[inline(always)]
-    pub fn hit<K: Kernel>(&self, ray: &Ray) -> Option<f64> {
-        self.hit_noted::<K>(ray, &mut ())
-    }
-
-    /// [`FinitePlane::hit`], telling `notes` why it decided as it did.
-    #[inline(always)]
-    pub fn hit_noted<K: Kernel>(&self, ray: &Ray, notes: &mut impl Notes) -> Option<f64> {
-        let t = self.frame.plane.hit_noted::<K>(ray, notes)?;
+    pub(crate) fn hit<K: Kernel>(&self, ray: &Ray, notes: &mut impl Notes) -> Option<f64> {
+        let t = K::plane(&self.frame.plane, ray, notes)?;
         let q = self.frame.plane_xy(ray.base + t * ray.dir);
         let inside = (0.0..=self.size.x).contains(&q.x) && (0.0..=self.size.y).contains(&q.y);
         notes.note(HitNote::Rectangle { q, inside });
@@ -85,10 +79,16 @@ mod tests {
         )
         .unwrap();
         let towards = |x: f64, y: f64| Ray::new(DVec3::new(x, y, 0.0), DVec3::NEG_Z);
-        assert_eq!(plane.hit::<Accurate>(&towards(0.0, -0.5)), Some(4.0));
-        assert_eq!(plane.hit::<Accurate>(&towards(1.0, 0.0)), Some(4.0));
-        assert_eq!(plane.hit::<Accurate>(&towards(1.5, -0.5)), None);
-        assert_eq!(plane.hit::<Accurate>(&towards(0.0, 0.5)), None);
+        assert_eq!(
+            plane.hit::<Accurate>(&towards(0.0, -0.5), &mut ()),
+            Some(4.0)
+        );
+        assert_eq!(
+            plane.hit::<Accurate>(&towards(1.0, 0.0), &mut ()),
+            Some(4.0)
+        );
+        assert_eq!(plane.hit::<Accurate>(&towards(1.5, -0.5), &mut ()), None);
+        assert_eq!(plane.hit::<Accurate>(&towards(0.0, 0.5), &mut ()), None);
     }
 
     #[test]

@@ -14,7 +14,8 @@
 //! Local frame: axis +y, waist centre at the origin; x² + z² = k y² + rc² with
 //! k = (r² - rc²)/h², -h <= y <= h.
 //!
-//! Its hit is note 003's algorithm, [`AxisQuadric::hit`], on the hyperboloid's row:
+//! Its hit is note 003's algorithm (`src/shapes/kernel/textbook.rs`, and the shipped
+//! kernel's own arithmetic, under the rule [`RootRule`](super::RootRule)), on the hyperboloid's row:
 //! a = dx² + dz² - k dy², b = 2(bx dx + bz dz - k by dy), c = bx² + bz² - k by² - rc²,
 //! the smallest positive root with -h <= y <= h. Its normal ([`AxisQuadric::normal`]) is
 //! the local (2x, -2k y, 2z), turned back by `irot`.
@@ -83,7 +84,7 @@ mod tests {
     #[test]
     fn waist_is_hit_at_its_radius() {
         let ray = Ray::new(DVec3::new(-4.0, 0.0, 0.0), DVec3::X);
-        assert_eq!(hyperboloid().equation.hit::<Accurate>(&ray), Some(3.0));
+        assert_eq!(hit(&hyperboloid().equation, &ray), Some(3.0));
         assert_eq!(
             hyperboloid().equation.normal(DVec3::new(-1.0, 0.0, 0.0)),
             DVec3::NEG_X
@@ -93,10 +94,10 @@ mod tests {
     #[test]
     fn at_height_one_the_radius_is_root_two_and_beyond_the_ends_it_misses() {
         let ray = Ray::new(DVec3::new(-4.0, -1.0, 0.0), DVec3::X);
-        let t = hyperboloid().equation.hit::<Accurate>(&ray).unwrap();
+        let t = hit(&hyperboloid().equation, &ray).unwrap();
         assert!((t - (4.0 - 2f64.sqrt())).abs() < 1e-15, "{t}");
         let beyond = Ray::new(DVec3::new(-4.0, 1.5, 0.0), DVec3::X);
-        assert_eq!(hyperboloid().equation.hit::<Accurate>(&beyond), None);
+        assert_eq!(hit(&hyperboloid().equation, &beyond), None);
     }
 
     #[test]

@@ -2,8 +2,11 @@
 //!
 //! Every shape is built once at load by a constructor that validates its numbers and
 //! precomputes what its hit test needs (unit normals, frames, `rotmat`, `irot`, `k`).
-//! Intersection is two-staged (STYLE.md): [`Shape::hit`] only finds the distance `t` and
-//! drives the closest-hit loop; [`Shape::surface`] computes point and normal for the winner.
+//! Intersection is two-staged (`../shared/STYLE.md`): [`Shape::hit`] only finds the
+//! distance `t` and drives the closest-hit loop; [`Shape::surface`] computes point and
+//! normal for the winner. How `t` is computed is a kernel's (`src/shapes/kernel/`); the
+//! rules that decide a hit (which root, the bounds, the z rule) are the shapes' own and
+//! shared by every kernel ([`RootRule`], [`Plane`]).
 
 mod axis_frame;
 mod axis_quadric;
@@ -32,7 +35,7 @@ pub use sphere::Sphere;
 
 use crate::error::MeaningError;
 use glam::DVec3;
-use kernel::{Accurate, Kernel};
+use kernel::{Kernel, KernelChoice, with_kernel};
 
 /// A ray: a base point and a unit direction.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -101,7 +104,7 @@ impl Parameter {
 pub struct Invalid {
     /// The offending parameter.
     pub parameter: Parameter,
-    /// The problem.
+    /// What is wrong with the parameter's value.
     pub error: MeaningError,
 }
 
@@ -143,21 +146,21 @@ pub(crate) fn unit_or_zero_error(
     unit(v).ok_or(Invalid { parameter, error })
 }
 
-/// Why a shape's hit test decided as it did, for `legacy-rt trace`: the algorithms of
-/// [`AxisQuadric::hit`], [`Plane::hit`], [`FinitePlane::hit`] and [`Quadric::hit`] tell
-/// each decision to a [`Notes`].
+/// Why a shape's hit test decided as it did, for `legacy-rt trace`: every kernel's hit
+/// ([`Shape::hit_noted`]) tells each decision of the shape's rule ([`RootRule`],
+/// [`Plane`], [`FinitePlane`], [`Quadric`]) to a [`Notes`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum HitNote {
     /// The quadratic has no real root (for the sphere: a discriminant not > 0).
     NoRealRoot,
     /// The sphere's nearer root, `None` if it is not a finite number.
     Nearer {
-        /// The distance.
+        /// The distance t along the ray.
         t: Option<f64>,
     },
     /// A root of a quadric 21-24, its point's local y, and whether it counts.
     Root {
-        /// The distance.
+        /// The distance t along the ray.
         t: f64,
         /// The local y of its point.
         y: f64,
@@ -166,7 +169,7 @@ pub enum HitNote {
     },
     /// A root of a `QUADRIC`.
     QuadricRoot {
-        /// The distance.
+        /// The distance t along the ray.
         t: f64,
         /// Counts or behind the base.
         verdict: Verdict,
@@ -175,7 +178,7 @@ pub enum HitNote {
     Parallel,
     /// A plane's t and the z of its point.
     Plane {
-        /// The distance.
+        /// The distance t along the ray.
         t: f64,
         /// The z of the point.
         z: f64,
@@ -195,7 +198,7 @@ pub enum HitNote {
 /// What a root or a plane's t came to.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Verdict {
-    /// It is the hit.
+    /// It is the hit: in front of the base and within the bounds.
     Counts,
     /// t <= 0: behind the ray's base.
     Behind,
@@ -208,11 +211,18 @@ pub enum Verdict {
 /// Where the hit algorithms tell their decisions. `()` forgets them, and then they cost
 /// nothing.
 pub trait Notes {
-    /// One decision.
+    /// Whether the notes are kept: when false, a kernel may take a path that has none to
+    /// give (the accurate kernel's early rejections and its FMA-compiled copy), with the
+    /// same t.
+    const KEPT: bool = true;
+
+    /// Takes one decision of a hit test.
     fn note(&mut self, note: HitNote);
 }
 
 impl Notes for () {
+    const KEPT: bool = false;
+
     #[inline(always)]
     fn note(&mut self, _: HitNote) {}
 }
@@ -260,46 +270,42 @@ pub enum Shape {
 }
 
 impl Shape {
-    /// The distance along `ray` to this shape under the legacy rules of spec §5, if any.
-    /// The caller keeps only `t > 0` (spec §4.6): a sphere may report a negative `t`.
-    #[inline]
-    pub fn hit(&self, ray: &Ray) -> Option<f64> {
-        self.hit_with::<Accurate>(ray)
+    /// The distance along `ray` to this shape under the legacy rules of spec §5, computed
+    /// by `kernel`, if any. The caller keeps only `t > 0` (spec §4.6): a sphere may report
+    /// a negative `t`.
+    pub fn hit(&self, ray: &Ray, kernel: KernelChoice) -> Option<f64> {
+        with_kernel!(kernel, K => self.hit_by::<K>(ray, &mut ()))
     }
 
-    /// [`Shape::hit`] computed by kernel `K`.
+    /// [`Shape::hit`], telling `notes` why it decided as it did; the same t.
+    pub fn hit_noted(
+        &self,
+        ray: &Ray,
+        kernel: KernelChoice,
+        notes: &mut impl Notes,
+    ) -> Option<f64> {
+        with_kernel!(kernel, K => self.hit_by::<K>(ray, notes))
+    }
+
+    /// [`Shape::hit_noted`] with the kernel as a type: what the renderer's loops call.
     #[inline]
-    pub fn hit_with<K: Kernel>(&self, ray: &Ray) -> Option<f64> {
+    pub(crate) fn hit_by<K: Kernel>(&self, ray: &Ray, notes: &mut impl Notes) -> Option<f64> {
         match self {
-            Shape::Sphere(s) => K::sphere(s, ray),
-            Shape::Plane(s) => K::plane(s, ray),
-            Shape::FinitePlane(s) => s.hit::<K>(ray),
-            Shape::TiledPlane(s) => K::plane(&s.plane, ray),
-            Shape::Paraboloid(s) => K::axis_quadric(&s.equation, ray),
-            Shape::Cylinder(s) => K::axis_quadric(&s.equation, ray),
-            Shape::Cone(s) => K::axis_quadric(&s.equation, ray),
-            Shape::Hyperboloid(s) => K::axis_quadric(&s.equation, ray),
-            Shape::Quadric(s) => K::quadric(s, ray),
+            Shape::Sphere(s) => K::sphere(s, ray, notes),
+            Shape::Plane(s) => K::plane(s, ray, notes),
+            Shape::FinitePlane(s) => s.hit::<K>(ray, notes),
+            Shape::TiledPlane(s) => K::plane(&s.plane, ray, notes),
+            Shape::Paraboloid(s) => K::axis_quadric(&s.equation, ray, notes),
+            Shape::Cylinder(s) => K::axis_quadric(&s.equation, ray, notes),
+            Shape::Cone(s) => K::axis_quadric(&s.equation, ray, notes),
+            Shape::Hyperboloid(s) => K::axis_quadric(&s.equation, ray, notes),
+            Shape::Quadric(s) => K::quadric(s, ray, notes),
         }
     }
 
-    /// [`Shape::hit_with`], telling `notes` why it decided as it did; the same t.
-    pub fn hit_noted<K: Kernel>(&self, ray: &Ray, notes: &mut impl Notes) -> Option<f64> {
-        match self {
-            Shape::Sphere(s) => s.equation.hit_noted::<K>(ray, notes),
-            Shape::Plane(s) => s.hit_noted::<K>(ray, notes),
-            Shape::FinitePlane(s) => s.hit_noted::<K>(ray, notes),
-            Shape::TiledPlane(s) => s.plane.hit_noted::<K>(ray, notes),
-            Shape::Paraboloid(s) => s.equation.hit_noted::<K>(ray, notes),
-            Shape::Cylinder(s) => s.equation.hit_noted::<K>(ray, notes),
-            Shape::Cone(s) => s.equation.hit_noted::<K>(ray, notes),
-            Shape::Hyperboloid(s) => s.equation.hit_noted::<K>(ray, notes),
-            Shape::Quadric(s) => s.hit_noted::<K>(ray, notes),
-        }
-    }
-
-    /// The equation of a quadric 21-24, to change its root rule (the variant nearer-root).
-    pub fn bounded_axis_quadric_mut(&mut self) -> Option<&mut AxisQuadric> {
+    /// The equation of a quadric 21-24, for the variant nearer-root to change its root
+    /// rule ([`AxisQuadric::smaller_root_only`]).
+    pub(crate) fn bounded_axis_quadric_mut(&mut self) -> Option<&mut AxisQuadric> {
         match self {
             Shape::Paraboloid(s) => Some(&mut s.equation),
             Shape::Cylinder(s) => Some(&mut s.equation),
@@ -321,7 +327,7 @@ impl Shape {
 
     /// The plane of a plane-based shape (14-17, 20), to drop its z rule (the variant
     /// no-z-rule).
-    pub fn plane_mut(&mut self) -> Option<&mut Plane> {
+    pub(crate) fn plane_mut(&mut self) -> Option<&mut Plane> {
         match self {
             Shape::Plane(s) => Some(s),
             Shape::FinitePlane(s) => Some(&mut s.frame.plane),
@@ -389,8 +395,19 @@ impl Shape {
 /// What the shapes' tests use besides their own module: a ray and the shipped kernel.
 #[cfg(test)]
 pub(crate) mod testing {
-    pub use super::Ray;
-    pub use super::kernel::Accurate;
+    pub(crate) use super::Ray;
+    pub(crate) use super::kernel::Accurate;
+    use super::kernel::Kernel;
+
+    /// The shipped kernel's t on a sphere or a quadric 21-24.
+    pub fn hit(quadric: &super::AxisQuadric, ray: &Ray) -> Option<f64> {
+        Accurate::axis_quadric(quadric, ray, &mut ())
+    }
+
+    /// The shipped kernel's t on a `QUADRIC`.
+    pub fn hit_quadric(quadric: &super::Quadric, ray: &Ray) -> Option<f64> {
+        Accurate::quadric(quadric, ray, &mut ())
+    }
 
     /// Numbers in [0, 1) from a fixed seed (xorshift64), so that a test's random cases
     /// are the same on every run.

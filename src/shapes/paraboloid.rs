@@ -11,7 +11,8 @@
 //! ```
 //! Local frame: axis +y, vertex at the origin; surface x² + z² = k y with k = r²/h.
 //!
-//! Its hit is note 003's algorithm, [`AxisQuadric::hit`], on the paraboloid's row:
+//! Its hit is note 003's algorithm (`src/shapes/kernel/textbook.rs`, and the shipped
+//! kernel's own arithmetic, under the rule [`RootRule`](super::RootRule)), on the paraboloid's row:
 //! a = dx² + dz², b = 2(bx dx + bz dz) - k dy, c = bx² + bz² - k by, the smallest
 //! positive root with 0 <= y <= h; along the axis a = 0 and the equation is linear. Its
 //! normal ([`AxisQuadric::normal`]) is the local (2x, -k, 2z), turned back by `irot`.
@@ -73,7 +74,7 @@ mod tests {
     #[test]
     fn ray_down_the_axis_meets_the_vertex_through_the_linear_case() {
         let ray = Ray::new(DVec3::new(0.0, 3.0, 0.0), DVec3::NEG_Y);
-        assert_eq!(bowl().equation.hit::<Accurate>(&ray), Some(3.0));
+        assert_eq!(hit(&bowl().equation, &ray), Some(3.0));
         let normal = bowl().equation.normal(DVec3::ZERO);
         assert_eq!(normal, DVec3::NEG_Y);
     }
@@ -82,9 +83,9 @@ mod tests {
     fn horizontal_ray_hits_where_x_squared_is_y() {
         // At y = 1 the radius is 1: from x = -5 the wall is 4 away.
         let ray = Ray::new(DVec3::new(-5.0, 1.0, 0.0), DVec3::X);
-        assert_eq!(bowl().equation.hit::<Accurate>(&ray), Some(4.0));
+        assert_eq!(hit(&bowl().equation, &ray), Some(4.0));
         // Above the rim (y = 4.5 > h) it misses.
         let high = Ray::new(DVec3::new(-5.0, 4.5, 0.0), DVec3::X);
-        assert_eq!(bowl().equation.hit::<Accurate>(&high), None);
+        assert_eq!(hit(&bowl().equation, &high), None);
     }
 }

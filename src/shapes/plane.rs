@@ -10,14 +10,13 @@
 //! ```
 //! (code 20, the procedural plane, adds a shader index line).
 
-use super::kernel::Kernel;
 use super::{HitNote, Invalid, Notes, Parameter, Ray, Verdict, unit_or_zero_error};
 use glam::DVec3;
 
 /// A plane through `point` with unit `normal`, used as given (never flipped, spec §4.4).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Plane {
-    /// Unit normal.
+    /// The unit normal, as the record gives its direction (never flipped).
     pub normal: DVec3,
     /// A point of the plane.
     pub point: DVec3,
@@ -37,27 +36,23 @@ impl Plane {
         })
     }
 
-    /// Where `ray` meets the plane (spec §5.1), with kernel `K` computing t: a miss when
-    /// N·D = 0, t < 0, or the hit has z > 0.
+    /// Spec §5.1's rule on a plane hit at distance `t` along `ray` (the kernel's t): a
+    /// miss when t < 0 (or not a number) or when the hit has z > 0, beyond the screen,
+    /// unless within `slack()` of z = 0 (a kernel's allowance for the rounding of z,
+    /// computed only when z > 0) or under no-z-rule.
     #[inline(always)]
-    pub fn hit<K: Kernel>(&self, ray: &Ray) -> Option<f64> {
-        self.hit_noted::<K>(ray, &mut ())
-    }
-
-    /// [`Plane::hit`], telling `notes` why it decided as it did.
-    #[inline(always)]
-    pub fn hit_noted<K: Kernel>(&self, ray: &Ray, notes: &mut impl Notes) -> Option<f64> {
-        // t = (N·Q - N·B) / N·D, a miss where N·D = 0.
-        let Some(t) = K::plane_distance(self, ray) else {
-            notes.note(HitNote::Parallel);
-            return None;
-        };
-        // Behind the base, or beyond the screen (z > 0), for every ray (spec §5.1).
+    pub(crate) fn verdict(
+        &self,
+        ray: &Ray,
+        t: f64,
+        slack: impl FnOnce() -> f64,
+        notes: &mut impl Notes,
+    ) -> Option<f64> {
         let z = ray.base.z + t * ray.dir.z;
         // (A NaN t counts as behind.)
         let verdict = if t.is_nan() || t < 0.0 {
             Verdict::Behind
-        } else if z <= 0.0 || !self.z_rule || z <= K::screen_slack(ray, t) {
+        } else if z <= 0.0 || !self.z_rule || z <= slack() {
             Verdict::Counts
         } else {
             Verdict::BeyondScreen
@@ -70,6 +65,7 @@ impl Plane {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::shapes::kernel::Kernel;
     use crate::shapes::testing::*;
 
     #[test]
@@ -87,7 +83,7 @@ mod tests {
             dir,
         };
         // Descending 4 units at 0.6 per unit length takes t = 4 / 0.6.
-        let t = plane.hit::<Accurate>(&ray).unwrap();
+        let t = Accurate::plane(&plane, &ray, &mut ()).unwrap();
         assert!((t - 4.0 / 0.6).abs() < 1e-14, "{t}");
     }
 
@@ -98,12 +94,18 @@ mod tests {
             base: DVec3::new(0.0, 0.0, 3.0),
             dir,
         };
-        assert_eq!(wall.hit::<Accurate>(&from_eye(DVec3::X)), None);
-        assert_eq!(wall.hit::<Accurate>(&from_eye(DVec3::Z)), None);
+        assert_eq!(Accurate::plane(&wall, &from_eye(DVec3::X), &mut ()), None);
+        assert_eq!(Accurate::plane(&wall, &from_eye(DVec3::Z), &mut ()), None);
         // A plane z = 1 lies between the eye and the screen: its hits have z > 0.
         let near = Plane::new(DVec3::Z, DVec3::new(0.0, 0.0, 1.0), "plane").unwrap();
-        assert_eq!(near.hit::<Accurate>(&from_eye(DVec3::NEG_Z)), None);
-        assert_eq!(wall.hit::<Accurate>(&from_eye(DVec3::NEG_Z)), Some(8.0));
+        assert_eq!(
+            Accurate::plane(&near, &from_eye(DVec3::NEG_Z), &mut ()),
+            None
+        );
+        assert_eq!(
+            Accurate::plane(&wall, &from_eye(DVec3::NEG_Z), &mut ()),
+            Some(8.0)
+        );
     }
 
     #[test]

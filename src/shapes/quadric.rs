@@ -9,8 +9,7 @@
 //! The coefficients fill the symmetric matrix Q = [A B C D; B E F G; C F H I; D G I J].
 
 use super::kernel::dd::{Dd, two_prod};
-use super::kernel::{Kernel, Steps, Tangent};
-use super::{HitNote, Invalid, Notes, Parameter, Ray, Verdict, unit};
+use super::{HitNote, Invalid, Notes, Parameter, Verdict, unit};
 use crate::error::MeaningError;
 use glam::{DMat3, DMat4, DVec3, DVec4};
 
@@ -37,15 +36,15 @@ pub struct Quadric {
 /// g0 and f0 are computed in double-double and rounded once.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Centred {
-    /// x0.
+    /// x0, the centre or the least-squares point near it.
     pub anchor: DVec3,
     /// M, the upper-left 3x3 block of Q.
     pub second_order: DMat3,
     /// |M|, element by element, for error estimates.
     pub second_order_abs: DMat3,
-    /// g0 = M x0 + d.
+    /// g0 = M x0 + d, the half-gradient at x0.
     pub gradient: DVec3,
-    /// f0 = f(x0).
+    /// f0 = f(x0), the value at x0.
     pub value: f64,
 }
 
@@ -164,41 +163,26 @@ impl Quadric {
         (d.dot(self.q * d), 2.0 * d.dot(qp), p.dot(qp))
     }
 
-    /// The smallest positive root along `ray` (spec §3.3; note 004), with kernel `K`
-    /// doing the arithmetic: a, b, c of the quadratic, its roots, and the first in front
-    /// of the base.
+    /// Note 004's choice among the two real roots, ascending: the smallest in front of
+    /// the base (a double root counts: a grazing ray touches). `judge(index, root)` gives
+    /// a root's t in the kernel's arithmetic and whether it may count (a kernel may know a
+    /// root to lie behind the base without polishing it); each is told to `notes`.
     #[inline(always)]
-    pub fn hit<K: Kernel>(&self, ray: &Ray) -> Option<f64> {
-        self.hit_noted::<K>(ray, &mut ())
-    }
-
-    /// [`Quadric::hit`], telling `notes` why it decided as it did.
-    #[inline(always)]
-    pub fn hit_noted<K: Kernel>(&self, ray: &Ray, notes: &mut impl Notes) -> Option<f64> {
-        // The ray as P = (B, 1) + t (D, 0), moved next to the quadric where the kernel
-        // does that.
-        let local = K::quadric_ray(self, ray);
-        // a = DᵀQD, b = 2 DᵀQP, c = PᵀQP.
-        let abc = K::quadric_coefficients(self, &local);
-        let steps = Steps::new(self, ray, &local, abc);
-        let Some(roots) = K::roots(abc, Tangent::Counts) else {
-            notes.note(HitNote::NoRealRoot);
-            return None;
-        };
-        // The smallest positive root (a double root counts: a grazing ray touches).
+    pub(crate) fn first_in_front<R>(
+        roots: [R; 2],
+        mut judge: impl FnMut(usize, R) -> (f64, bool),
+        notes: &mut impl Notes,
+    ) -> Option<f64> {
         for (index, root) in roots.into_iter().enumerate() {
-            match K::quadric_distance(&steps, root, index) {
-                Ok(t) if t > 0.0 => {
-                    notes.note(HitNote::QuadricRoot {
-                        t,
-                        verdict: Verdict::Counts,
-                    });
-                    return Some(t);
-                }
-                Ok(t) | Err(t) => notes.note(HitNote::QuadricRoot {
-                    t,
-                    verdict: Verdict::Behind,
-                }),
+            let (t, may_count) = judge(index, root);
+            let counts = may_count && t > 0.0;
+            let verdict = match counts {
+                true => Verdict::Counts,
+                false => Verdict::Behind,
+            };
+            notes.note(HitNote::QuadricRoot { t, verdict });
+            if counts {
+                return Some(t);
             }
         }
         None
@@ -261,7 +245,7 @@ mod tests {
                 let from = centre + DVec3::new(next() - 0.5, next() - 0.5, next() - 0.5) * 20.0;
                 let towards = centre + DVec3::new(next() - 0.5, next() - 0.5, next() - 0.5) * 4.0;
                 let ray = Ray::new(from, (towards - from).normalize());
-                if let Some(t) = quadric.hit::<Accurate>(&ray) {
+                if let Some(t) = hit_quadric(&quadric, &ray) {
                     hits += 1;
                     let point = ray.base + t * ray.dir;
                     let slack = 1e-12 * centre.abs().max_element();
@@ -314,18 +298,18 @@ mod tests {
     fn unit_sphere_as_a_quadric() {
         let sphere = Quadric::new([1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 0.0, -1.0]).unwrap();
         let ray = Ray::new(DVec3::new(0.0, 0.0, 5.0), DVec3::NEG_Z);
-        assert_eq!(sphere.hit::<Accurate>(&ray), Some(4.0));
+        assert_eq!(hit_quadric(&sphere, &ray), Some(4.0));
         assert_eq!(sphere.normal(DVec3::Z), DVec3::Z);
         // From inside, the far side is hit (unlike code 13).
         let inside = Ray::new(DVec3::ZERO, DVec3::X);
-        assert_eq!(sphere.hit::<Accurate>(&inside), Some(1.0));
+        assert_eq!(hit_quadric(&sphere, &inside), Some(1.0));
     }
 
     #[test]
     fn no_real_points_renders_nothing_and_all_zero_is_an_error() {
         let empty = Quadric::new([1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 0.0, 1.0]).unwrap();
         let ray = Ray::new(DVec3::new(0.0, 0.0, 5.0), DVec3::NEG_Z);
-        assert_eq!(empty.hit::<Accurate>(&ray), None);
+        assert_eq!(hit_quadric(&empty, &ray), None);
         assert!(Quadric::new([0.0; 10]).is_err());
     }
 }

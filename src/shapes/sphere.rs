@@ -10,7 +10,8 @@
 //! ```
 //! (code 19, the procedural sphere, adds a shader index line).
 //!
-//! Its hit is note 003's algorithm, [`AxisQuadric::hit`], in the sphere's case: the
+//! Its hit is note 003's algorithm (`src/shapes/kernel/textbook.rs`, and the shipped
+//! kernel's own arithmetic, under the rule [`RootRule`](super::RootRule)), in the sphere's case: the
 //! smaller root of |B - C + tD|² = r², even when negative, if the discriminant is
 //! positive (spec §5.2: a tangent ray misses, a ray from inside finds t <= 0). Its normal
 //! ([`AxisQuadric::normal`]) is the outward unit(P - C).
@@ -21,11 +22,11 @@ use glam::DVec3;
 /// A sphere with its squared radius precomputed.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Sphere {
-    /// Centre.
+    /// The centre C of spec §5.2.
     pub centre: DVec3,
-    /// Radius, > 0.
+    /// The radius r, greater than 0.
     pub radius: f64,
-    /// r².
+    /// r², the constant of the sphere's equation, exact.
     pub radius_sq: f64,
     /// |P - C|² - r² = 0 in the form every kernel solves.
     pub equation: AxisQuadric,
@@ -60,7 +61,7 @@ mod tests {
     #[test]
     fn ray_through_the_centre_hits_the_near_side() {
         let ray = Ray::new(DVec3::ZERO, DVec3::NEG_Z);
-        assert_eq!(sphere().equation.hit::<Accurate>(&ray), Some(3.0));
+        assert_eq!(hit(&sphere().equation, &ray), Some(3.0));
         assert_eq!(
             sphere().equation.normal(DVec3::new(0.0, 0.0, -3.0)),
             DVec3::Z
@@ -70,15 +71,15 @@ mod tests {
     #[test]
     fn ray_from_inside_reports_the_negative_root() {
         let ray = Ray::new(DVec3::new(0.0, 0.0, -5.0), DVec3::X);
-        assert_eq!(sphere().equation.hit::<Accurate>(&ray), Some(-2.0));
+        assert_eq!(hit(&sphere().equation, &ray), Some(-2.0));
     }
 
     #[test]
     fn tangent_and_missing_rays_do_not_hit() {
         let tangent = Ray::new(DVec3::new(2.0, 0.0, 0.0), DVec3::NEG_Z);
         let away = Ray::new(DVec3::ZERO, DVec3::Y);
-        assert_eq!(sphere().equation.hit::<Accurate>(&tangent), None);
-        assert_eq!(sphere().equation.hit::<Accurate>(&away), None);
+        assert_eq!(hit(&sphere().equation, &tangent), None);
+        assert_eq!(hit(&sphere().equation, &away), None);
     }
 
     #[test]

@@ -8,7 +8,7 @@
 pub mod support;
 
 use glam::DVec3;
-use legacy_rt::shapes::kernel::{Accurate, Kernel, StableRoots, Textbook, TextbookF32};
+use legacy_rt::shapes::kernel::KernelChoice::{Accurate, Stable, Textbook, TextbookF32};
 use legacy_rt::shapes::{Ray, Shape, Sphere};
 use support::{Case, Family, GOAL_ULPS, Reference, SHAPES, reference, suite, tally};
 
@@ -27,7 +27,7 @@ fn the_shipped_kernel_is_within_4_ulps_on_every_hard_case() {
     let mut failures = Vec::new();
     let mut ties = 0;
     for (family, references) in &with_references() {
-        let result = tally::<Accurate>(family, references);
+        let result = tally(Accurate, family, references);
         ties += result.ties;
         if result.max() > GOAL_ULPS || result.disagreements > 0 {
             failures.push(format!(
@@ -57,7 +57,7 @@ fn the_textbook_formula_fails_the_same_families() {
     for shape in SHAPES {
         let mut failing = Vec::new();
         for (family, references) in families.iter().filter(|(f, _)| f.shape == shape) {
-            let result = tally::<Textbook>(family, references);
+            let result = tally(Textbook, family, references);
             if result.max() > GOAL_ULPS || result.disagreements > 0 {
                 failing.push(family.name);
             }
@@ -86,7 +86,7 @@ fn references_match_roots_known_in_closed_form() {
     };
     let case = Case { shape: sphere, ray };
     assert_eq!(reference(&case).t, Some(1e5));
-    assert_eq!(support::answer::<Accurate>(&case), Some(1e5));
+    assert_eq!(support::answer(Accurate, &case), Some(1e5));
     // A unit sphere at the origin, the ray 0.6 off the axis from z0 = 12345.678: the
     // chord's half-length is sqrt(1 - 0.36) = 0.8, so t = z0 - 0.8 (to an ulp: 0.6 is not
     // exact in binary). The textbook formula forms b² - 4ac = 4 z0² - 4 (z0² - 0.64) and
@@ -104,10 +104,10 @@ fn references_match_roots_known_in_closed_form() {
         (exact.t.unwrap() - (z0 - 0.8)).abs() <= support::ulp(z0),
         "{exact:?}"
     );
-    let textbook = support::answer::<Textbook>(&case).unwrap();
+    let textbook = support::answer(Textbook, &case).unwrap();
     let error = support::ulps(textbook, exact.exact.unwrap(), 1.0);
     assert!(error > 100.0, "textbook error {error} ulps");
-    let shipped = support::answer::<Accurate>(&case).unwrap();
+    let shipped = support::answer(Accurate, &case).unwrap();
     assert!(support::ulps(shipped, exact.exact.unwrap(), 1.0) <= GOAL_ULPS);
 }
 
@@ -142,8 +142,8 @@ fn quadric_records_agree_with_the_dedicated_shapes() {
                 continue;
             }
             let quadric = support::as_general_quadric(equation);
-            let from_quadric = Accurate::quadric(&quadric, &case.ray);
-            let dedicated = Accurate::axis_quadric(equation, &case.ray).unwrap();
+            let from_quadric = Shape::Quadric(Box::new(quadric.clone())).hit(&case.ray, Accurate);
+            let dedicated = case.shape.hit(&case.ray, Accurate).unwrap();
             let Some(from_quadric) = from_quadric else {
                 panic!("{}: QUADRIC misses where the shape hits", family.name);
             };
@@ -178,8 +178,8 @@ fn all_kernels_agree_on_an_easy_ray() {
         dir: DVec3::NEG_Z,
     };
     let expected = Some(3.0);
-    assert_eq!(sphere.hit_with::<Accurate>(&ray), expected);
-    assert_eq!(sphere.hit_with::<Textbook>(&ray), expected);
-    assert_eq!(sphere.hit_with::<StableRoots>(&ray), expected);
-    assert_eq!(sphere.hit_with::<TextbookF32>(&ray), expected);
+    assert_eq!(sphere.hit(&ray, Accurate), expected);
+    assert_eq!(sphere.hit(&ray, Textbook), expected);
+    assert_eq!(sphere.hit(&ray, Stable), expected);
+    assert_eq!(sphere.hit(&ray, TextbookF32), expected);
 }

@@ -14,7 +14,7 @@ fn ppm_of(text: &str, width: usize, height: usize, max_dist: f64) -> Vec<u8> {
         max_dist,
         ..Options::new(width, height)
     };
-    legacy_rt::image_output::ppm(&render(&scene, &options, |_| {}).0)
+    legacy_rt::image_output::ppm(&render(&scene, &options, |_| {}))
 }
 
 #[test]

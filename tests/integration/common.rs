@@ -74,7 +74,7 @@ pub fn snapshots() -> insta::Settings {
 pub fn image_document(scene: &legacy_rt::Scene) -> String {
     use legacy_rt::render::{Options, render};
     let options = |(width, height): (u64, u64)| Options::new(width as usize, height as usize);
-    let (small, _) = render(scene, &options((32, 24)), |_| {});
+    let small = render(scene, &options((32, 24)), |_| {});
     let mut text = String::from("P3\n32 24\n255\n");
     for row in small.pixels.chunks(small.width) {
         let row: Vec<String> = row
@@ -85,7 +85,7 @@ pub fn image_document(scene: &legacy_rt::Scene) -> String {
         text.push('\n');
     }
     let size = scene.default_size();
-    let (full, _) = render(scene, &options(size), |_| {});
+    let full = render(scene, &options(size), |_| {});
     let ppm = legacy_rt::image_output::ppm(&full);
     let hash = ppm.iter().fold(0xcbf29ce484222325u64, |h, &b| {
         (h ^ u64::from(b)).wrapping_mul(0x100000001b3)

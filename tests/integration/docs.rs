@@ -154,7 +154,7 @@ fn every_scene_snippet_in_the_format_guide_loads_and_renders() {
     for snippet in &snippets {
         let scene = legacy_rt::load(snippet)
             .unwrap_or_else(|e| panic!("snippet does not load:\n{snippet}\n{e}"));
-        let (image, _) = render(&scene, &Options::new(40, 30), |_| {});
+        let image = render(&scene, &Options::new(40, 30), |_| {});
         assert_eq!((image.width, image.height), (40, 30));
         // Every snippet shows its object: some pixel is not black.
         assert!(
@@ -286,4 +286,30 @@ fn the_readme_s_commands_need_nothing_beside_the_repository() {
         scenes >= 5,
         "{scenes} scene files named by the README's commands"
     );
+}
+
+/// docs/variants.md's table is the program's table of variants, as
+/// `cargo run --release --example variant_pictures` writes it.
+#[test]
+fn the_variants_table_is_the_program_s() {
+    let doc = std::fs::read_to_string(root().join("docs/variants.md")).unwrap();
+    let table = legacy_rt::render::variant::markdown_table();
+    assert!(
+        doc.contains(&table),
+        "docs/variants.md's table is out of date: run cargo run --release --example \
+         variant_pictures"
+    );
+    // One row per variant.
+    assert_eq!(table.lines().count(), legacy_rt::render::VARIANTS.len() + 2);
+}
+
+/// `legacy-rt --help` names every variant of the table, with its parameter and scope.
+#[test]
+fn the_help_lists_every_variant() {
+    let output = super::common::run(&["--help"], b"");
+    let help = String::from_utf8(output.stdout).unwrap();
+    for row in legacy_rt::render::VARIANTS {
+        let id = legacy_rt::render::Variant::pattern(row);
+        assert!(help.contains(&id), "--help does not list {id}");
+    }
 }

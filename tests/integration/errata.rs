@@ -3,6 +3,7 @@
 //! version failing). Expected values come from the formulas, not from the tracer.
 
 use glam::DVec3;
+use legacy_rt::shapes::kernel::KernelChoice::Accurate;
 use legacy_rt::shapes::{Cone, Cylinder, Hyperboloid, Quadric, Ray, Shape};
 
 fn ray(base: [f64; 3], dir: [f64; 3]) -> Ray {
@@ -40,7 +41,7 @@ fn note_000_ellipsoid_divides_by_the_squared_semi_axes() {
     // x axis.
     let ellipsoid = Shape::Quadric(Box::new(ellipsoid(a, b, c)));
     let t = ellipsoid
-        .hit(&ray([10.0, 0.0, 0.0], [-1.0, 0.0, 0.0]))
+        .hit(&ray([10.0, 0.0, 0.0], [-1.0, 0.0, 0.0]), Accurate)
         .unwrap();
     assert!(close(10.0 - t, a), "hit at x = {}", 10.0 - t);
 }
@@ -253,7 +254,7 @@ fn note_003_cone_point_is_the_apex() {
     let cone = Shape::Cone(Cone::new(DVec3::new(4.0, 3.0, -4.0), DVec3::Y, r, h).unwrap());
     let across = |height: f64| {
         let t = cone
-            .hit(&ray([4.0, 3.0 + height, 6.0], [0.0, 0.0, -1.0]))
+            .hit(&ray([4.0, 3.0 + height, 6.0], [0.0, 0.0, -1.0]), Accurate)
             .unwrap();
         // Distance from the axis where the ray meets the cone.
         (6.0 - t) - (-4.0)
@@ -274,7 +275,7 @@ fn note_003_hyperboloid_scale_and_centre() {
     let shape = Shape::Hyperboloid(Hyperboloid::new(centre, DVec3::Y, r, h, rc).unwrap());
     let radius_at = |y: f64| {
         let t = shape
-            .hit(&ray([4.0, 3.0 + y, 6.0], [0.0, 0.0, -1.0]))
+            .hit(&ray([4.0, 3.0 + y, 6.0], [0.0, 0.0, -1.0]), Accurate)
             .unwrap();
         (6.0 - t) - centre.z
     };
@@ -298,7 +299,7 @@ fn note_003_out_of_bounds_root_falls_through_to_the_other_one() {
     // rim (y > h), leaves it through the wall inside (y < h).
     let base = DVec3::new(-2.0, 5.0, 0.0);
     let dir = DVec3::new(1.0, -1.2, 0.0).normalize();
-    let t = cylinder.hit(&Ray { base, dir }).unwrap();
+    let t = cylinder.hit(&Ray { base, dir }, Accurate).unwrap();
     let hit = base + t * dir;
     assert!(close(hit.x, r), "{hit}");
     assert!(hit.y > 0.0 && hit.y < h);

@@ -138,7 +138,7 @@ fn textures_from_memory_load_and_fail_as_from_the_disk() {
         match (from_disk, from_memory) {
             (Ok(disk), Ok(memory)) => {
                 let options = legacy_rt::Options::new(64, 48);
-                let render = |scene| legacy_rt::render(scene, &options, |_| {}).0;
+                let render = |scene| legacy_rt::render(scene, &options, |_| {});
                 assert_eq!(render(&disk), render(&memory), "{}", path.display());
             }
             (Err(disk), Err(memory)) => {

@@ -11,7 +11,12 @@ use std::path::Path;
 
 /// The PPM bytes of `scene` rendered with `options`.
 fn bytes(scene: &legacy_rt::Scene, options: &Options) -> Vec<u8> {
-    legacy_rt::image_output::ppm(&render(scene, options, |_| {}).0)
+    legacy_rt::image_output::ppm(&render(scene, options, |_| {}))
+}
+
+/// Whether a 96x72 render of `scene` walks a bounding volume hierarchy.
+fn hierarchy(scene: &legacy_rt::Scene) -> bool {
+    legacy_rt::render::acceleration(scene, &Options::new(96, 72)).0
 }
 
 /// The PPM of `scene` at `width` x `height` with the hierarchy and with the linear scan.
@@ -63,7 +68,7 @@ fn threads_1_and_4_give_identical_bytes() {
 fn the_bvh_gives_the_linear_scan_s_image() {
     let mut accelerated = 0;
     for (name, scene) in scenes() {
-        accelerated += usize::from(legacy_rt::render::Bvh::new(&scene).is_some());
+        accelerated += usize::from(hierarchy(&scene));
         let [bvh, linear] = with_and_without_bvh(&scene, 96, 72);
         assert!(bvh == linear, "{name}");
     }
@@ -74,11 +79,11 @@ fn the_bvh_gives_the_linear_scan_s_image() {
 #[test]
 fn the_generated_family_has_the_requested_objects_in_view() {
     let floor_only = legacy_rt::load(&generated::many_objects(0)).unwrap();
-    let floor_only = render(&floor_only, &Options::new(160, 120), |_| {}).0;
+    let floor_only = render(&floor_only, &Options::new(160, 120), |_| {});
     for count in [10, 100] {
         let scene = legacy_rt::load(&generated::many_objects(count)).unwrap();
         assert_eq!(scene.objects.len(), count + 1); // and the floor
-        let image = render(&scene, &Options::new(160, 120), |_| {}).0;
+        let image = render(&scene, &Options::new(160, 120), |_| {});
         // The objects change a good part of the picture that the floor alone makes.
         let changed = (image.pixels.iter())
             .zip(&floor_only.pixels)
@@ -101,7 +106,7 @@ fn a_lopsided_hierarchy_renders_as_the_linear_scan() {
         text.push_str(&format!("13\n1 1 1\n3 3 3\n0 0 0\n{x:e} 0 -10\n0.5\n"));
     }
     let scene = legacy_rt::load(&text).unwrap();
-    assert!(legacy_rt::render::Bvh::new(&scene).is_some());
+    assert!(hierarchy(&scene));
     let [image, linear] = with_and_without_bvh(&scene, 64, 48);
     assert!(image == linear);
     // The nearest spheres are in view: the image is not all black.
@@ -130,34 +135,10 @@ fn shapes_thinner_than_their_rounding_give_the_linear_scan_s_image() {
     ];
     for shape in thin {
         let scene = legacy_rt::load(&format!("8 6\n0 0 3\n{spheres}{shape}")).unwrap();
-        assert!(legacy_rt::render::Bvh::new(&scene).is_some());
+        assert!(hierarchy(&scene));
         let [bvh, linear] = with_and_without_bvh(&scene, 32, 24);
         assert!(bvh == linear, "{shape}");
     }
-}
-
-#[test]
-fn the_hierarchy_is_built_where_it_pays_for_its_rays() {
-    use legacy_rt::render::{Boxes, Bvh};
-    let spheres = |n: usize| -> String {
-        let one = |i: usize| format!("13\n1 1 1\n1 1 1\n0 0 0\n{} 0 -8\n0.4\n", i as f64 - 2.0);
-        format!("8 6\n0 0 3\n{}", (0..n).map(one).collect::<String>())
-    };
-    // Three spheres cost less to test than a walk of their tree (27 ns against 30, in
-    // `HIERARCHY_FROM_NS`): scanned; four, or three and a cylinder: a tree, for any real
-    // image.
-    let three = Boxes::new(&legacy_rt::load(&spheres(3)).unwrap());
-    assert!(Bvh::for_rays(&three, 640 * 480).is_none());
-    let four = Boxes::new(&legacy_rt::load(&spheres(4)).unwrap());
-    assert!(Bvh::for_rays(&four, 640 * 480).is_some());
-    let cylinder = "22\n1 1 1\n1 1 1\n0 0 0\n3 0 -8\n0 1 0\n0.4 1\n";
-    let mixed = legacy_rt::load(&format!("{}{cylinder}", spheres(3))).unwrap();
-    assert!(Bvh::for_rays(&Boxes::new(&mixed), 640 * 480).is_some());
-    // 1,000 objects: the build costs about 6 × log2(1000) = 60 tests per object, more than
-    // 4 rays scanning every object, less than a 16x12 image does.
-    let many = Boxes::new(&legacy_rt::load(&spheres(1000)).unwrap());
-    assert!(Bvh::for_rays(&many, 4).is_none());
-    assert!(Bvh::for_rays(&many, 16 * 12).is_some());
 }
 
 /// A room (spec1's kind of scene, and a04's): walls, floor and ceiling as planes, a
@@ -199,7 +180,7 @@ fn the_room_under_every_variant_renders_as_the_linear_scan() {
     // tiles' 8 pixels, and every variant (pixel-centre moves the pixels, upside-down the
     // rows, no-z-rule the planes' hits, textbook-f32 the arithmetic).
     let scene = room();
-    assert!(legacy_rt::render::Bvh::new(&scene).is_some());
+    assert!(hierarchy(&scene));
     for variant in Variant::all() {
         for (width, height) in [(64, 48), (53, 37)] {
             let options = Options::new(width, height).with_variant(variant).unwrap();
@@ -207,7 +188,7 @@ fn the_room_under_every_variant_renders_as_the_linear_scan() {
                 accelerate: false,
                 ..options
             };
-            let name = variant.about().id;
+            let name = variant.id();
             assert!(
                 bytes(&scene, &options) == bytes(&scene, &linear),
                 "{name} {width}x{height}"

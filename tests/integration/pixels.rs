@@ -7,7 +7,7 @@ use legacy_rt::render::{self, Options};
 fn render_scene(text: &str, width: usize, height: usize) -> legacy_rt::Image {
     let scene = legacy_rt::load(text).unwrap_or_else(|e| panic!("{e}"));
     let options = Options::new(width, height);
-    render::render(&scene, &options, |_| {}).0
+    render::render(&scene, &options, |_| {})
 }
 
 /// Pixel (x, y) with (0, 0) at the lower left (spec §4.1).

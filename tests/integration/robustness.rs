@@ -40,9 +40,9 @@ fn render_small(scene: &legacy_rt::Scene) {
         accelerate: false,
         ..accelerated
     };
-    let (image, _) = render(scene, &accelerated, |_| {});
+    let image = render(scene, &accelerated, |_| {});
     assert_eq!(image.pixels.len(), 8 * 6);
-    assert!(image.pixels == render(scene, &linear, |_| {}).0.pixels);
+    assert!(image.pixels == render(scene, &linear, |_| {}).pixels);
 }
 
 /// Loads `text` and checks what any outcome must satisfy; a scene that loads is dumped
@@ -312,7 +312,7 @@ fn most_generated_scenes_are_valid() {
 
 #[test]
 fn a_million_and_one_records_is_a_clear_error_not_an_allocation_failure() {
-    let limit = legacy_rt::scene_file::MAX_RECORDS;
+    let limit = legacy_rt::scene::MAX_RECORDS;
     let mut text = String::from("8 6\n0 0 3\n");
     for _ in 0..=limit {
         text.push_str("10\n1 1 1\n0 0 0\n");

@@ -134,7 +134,7 @@ fn scaling_a_scene_by_1e_minus_3_and_1e3_keeps_its_image() {
                 max_dist: DEFAULT_MAX_DIST * s,
                 ..Options::new(160, 120)
             };
-            render(scene, &options, |_| {}).0
+            render(scene, &options, |_| {})
         };
         let base = render_at(&scene, 1.0);
         for s in [1e-3, 1e3] {

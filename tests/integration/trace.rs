@@ -23,7 +23,7 @@ fn at(image: &legacy_rt::Image, x: usize, y: usize) -> [u8; 3] {
 
 /// Traces every pixel and checks its bytes against the render's.
 fn every_pixel_agrees(name: &str, scene: &Scene, options: &Options) {
-    let (image, _) = render(scene, options, |_| {});
+    let image = render(scene, options, |_| {});
     for y in 0..options.height {
         for x in 0..options.width {
             let traced = trace(scene, options, x, y).unwrap();
@@ -318,11 +318,11 @@ fn every_stage_renders_every_course_scene() {
                 stage,
                 ..Options::new(32, 24)
             };
-            images.push(render(&scene, &options, |_| {}).0);
+            images.push(render(&scene, &options, |_| {}));
         }
         // The full image is the default render, and the ambient stage is never brighter
         // than the diffuse one (lights only add).
-        assert_eq!(images[3], render(&scene, &Options::new(32, 24), |_| {}).0);
+        assert_eq!(images[3], render(&scene, &Options::new(32, 24), |_| {}));
         for (a, d) in images[0].pixels.iter().zip(&images[1].pixels) {
             assert!(a.iter().zip(d).all(|(a, d)| a <= d), "{}", path.display());
         }

@@ -2,7 +2,7 @@
 //! rule's formula gives on a scene small enough to work out by hand.
 
 use glam::DVec3;
-use legacy_rt::render::{self, Options, Variant};
+use legacy_rt::render::{self, Kind, Options, Variant};
 use legacy_rt::shapes::{Ray, Shape};
 
 /// The debug scene of spec §6: a plane z = -5 facing the eye, ambient 5 5 0, no lights.
@@ -17,7 +17,7 @@ fn render_as(
     let options = variants.iter().fold(Options::new(width, height), |o, &v| {
         o.with_variant(v).unwrap()
     });
-    render::render(&scene, &options, |_| {}).0
+    render::render(&scene, &options, |_| {})
 }
 
 /// The red byte of pixel (x, y), (0, 0) at the lower left, of an image in output order.
@@ -32,7 +32,7 @@ fn to_the_wall(x: f64, y: f64) -> f64 {
 
 #[test]
 fn pixel_centre_samples_the_middle_of_each_pixel() {
-    let image = render_as(DEBUG_SCENE, (5, 3), &[Variant::PixelCentre]);
+    let image = render_as(DEBUG_SCENE, (5, 3), &[Variant::of(Kind::PixelCentre)]);
     // Pixel (0, 0): (0.5 / 5 · 8 - 4, 0.5 / 3 · 6 - 3) = (-3.2, -2) instead of (-4, -3).
     let expected = (5.0 / to_the_wall(-3.2, -2.0) * 255.0).floor() as u8;
     assert_eq!(red(&image, 0, 0), expected);
@@ -44,17 +44,17 @@ fn pixel_centre_samples_the_middle_of_each_pixel() {
 #[test]
 fn the_byte_rules_round_and_scale_by_256() {
     let corner = 5.0 / to_the_wall(-4.0, -3.0); // 0.3215: 81.99 → 81 truncated (spec §6)
-    let round = render_as(DEBUG_SCENE, (5, 3), &[Variant::RoundBytes]);
+    let round = render_as(DEBUG_SCENE, (5, 3), &[Variant::of(Kind::RoundBytes)]);
     assert_eq!(red(&round, 0, 0), (255.0 * corner + 0.5).floor() as u8);
     assert_eq!(red(&round, 0, 0), 82);
-    let scaled = render_as(DEBUG_SCENE, (5, 3), &[Variant::Scale256]);
+    let scaled = render_as(DEBUG_SCENE, (5, 3), &[Variant::of(Kind::Scale256)]);
     assert_eq!(red(&scaled, 0, 0), (256.0 * corner) as u8);
     assert_eq!(red(&scaled, 2, 1), 160); // 256 · 0.625
 }
 
 #[test]
 fn no_distance_leaves_the_ambient_undivided() {
-    let image = render_as(DEBUG_SCENE, (5, 3), &[Variant::NoDistance]);
+    let image = render_as(DEBUG_SCENE, (5, 3), &[Variant::of(Kind::NoDistance)]);
     // Ambient 5 5 0, clamped to 1: every pixel 255 255 0.
     assert!(image.pixels.iter().all(|&p| p == [255, 255, 0]));
 }
@@ -63,7 +63,7 @@ fn no_distance_leaves_the_ambient_undivided() {
 fn upside_down_writes_the_bottom_row_first() {
     let scene = "8 6\n0 0 3\n13\n9 9 9\n0 0 0\n0 0 0\n0 2 -4\n1.5\n"; // a sphere above centre
     let normal = render_as(scene, (16, 12), &[]);
-    let flipped = render_as(scene, (16, 12), &[Variant::UpsideDown]);
+    let flipped = render_as(scene, (16, 12), &[Variant::of(Kind::UpsideDown)]);
     let rows: Vec<_> = normal.pixels.chunks(16).rev().flatten().copied().collect();
     assert_eq!(flipped.pixels, rows);
     assert_ne!(flipped.pixels, normal.pixels);
@@ -80,9 +80,9 @@ fn segment_distance_divides_by_the_last_segment_only() {
     // Spec §4.2: the ceiling's ambient 1 over the path's 8 + 2 = 10; the variant: over 2.
     let reference = render_as(MIRROR_SCENE, (5, 3), &[]);
     assert_eq!(red(&reference, 2, 1), (255.0 / 10.0) as u8);
-    let segment = render_as(MIRROR_SCENE, (5, 3), &[Variant::SegmentDistance]);
+    let segment = render_as(MIRROR_SCENE, (5, 3), &[Variant::of(Kind::SegmentDistance)]);
     assert_eq!(red(&segment, 2, 1), (255.0 / 2.0) as u8);
-    let one = render_as(MIRROR_SCENE, (5, 3), &[Variant::OneBounce]);
+    let one = render_as(MIRROR_SCENE, (5, 3), &[Variant::of(Kind::OneBounce)]);
     assert_eq!(red(&one, 2, 1), red(&reference, 2, 1)); // one bounce is all it takes
 }
 
@@ -97,7 +97,7 @@ fn square_falloff_divides_by_the_squared_distance() {
     // cos θ = 1, dist = 4: 16 / 4 / 8 = 0.5 as specified; 16 / 16 / 8 = 0.125 squared.
     let reference = render_as(&lit_wall(1), (5, 3), &[]);
     assert_eq!(red(&reference, 2, 1), 127);
-    let squared = render_as(&lit_wall(1), (5, 3), &[Variant::SquareFalloff]);
+    let squared = render_as(&lit_wall(1), (5, 3), &[Variant::of(Kind::SquareFalloff)]);
     assert_eq!(red(&squared, 2, 1), (0.125 * 255.0) as u8);
 }
 
@@ -106,7 +106,7 @@ fn facing_normals_light_the_back_of_a_surface() {
     // The normal (0, 0, -1) faces away from the eye and the light: cos θ = -1, unlit.
     let reference = render_as(&lit_wall(-1), (5, 3), &[]);
     assert_eq!(red(&reference, 2, 1), 0);
-    let facing = render_as(&lit_wall(-1), (5, 3), &[Variant::FacingNormals]);
+    let facing = render_as(&lit_wall(-1), (5, 3), &[Variant::of(Kind::FacingNormals)]);
     assert_eq!(red(&facing, 2, 1), 127);
 }
 
@@ -117,7 +117,7 @@ fn no_shadows_lets_a_blocked_light_through() {
     let scene = "8 6\n0 0 3\n14\n0 0 0\n1 1 1\n0 0 0\n0 0 1\n0 0 -5\n\
         13\n0 0 0\n0 0 0\n0 0 0\n0 2 -3\n0.5\n10\n32 32 32\n0 4 -1\n";
     assert_eq!(red(&render_as(scene, (5, 3), &[]), 2, 1), 0);
-    let unshadowed = render_as(scene, (5, 3), &[Variant::NoShadows]);
+    let unshadowed = render_as(scene, (5, 3), &[Variant::of(Kind::NoShadows)]);
     assert_eq!(red(&unshadowed, 2, 1), 127);
 }
 
@@ -127,7 +127,11 @@ fn no_z_rule_keeps_a_plane_between_the_eye_and_the_screen() {
     let scene = "8 6\n0 0 3\n14\n1 1 1\n0 0 0\n0 0 0\n0 0 1\n0 0 1\n";
     assert_eq!(red(&render_as(scene, (5, 3), &[]), 2, 1), 0);
     assert_eq!(
-        red(&render_as(scene, (5, 3), &[Variant::NoZRule]), 2, 1),
+        red(
+            &render_as(scene, (5, 3), &[Variant::of(Kind::NoZRule)]),
+            2,
+            1
+        ),
         127
     );
 }
@@ -139,22 +143,36 @@ fn tile_parity_swaps_which_tiles_are_the_foreground() {
         0 0 0\n0 0 0\n0 0 0\n";
     assert_eq!(red(&render_as(scene, (5, 3), &[]), 2, 1), 0);
     assert_eq!(
-        red(&render_as(scene, (5, 3), &[Variant::TileParity]), 2, 1),
+        red(
+            &render_as(scene, (5, 3), &[Variant::of(Kind::TileParity)]),
+            2,
+            1
+        ),
         255
     );
 }
 
 #[test]
 fn cone_scale_takes_the_paraboloids_k() {
+    // A cone with its apex at (0, -2, -6), axis +y, r = 2, h = 4: k = (r/h)² = 0.25, so
+    // at the height of the eye (local y = 2) its radius is 1; with cone-scale's
+    // k = r²/h = 1 it is 2. The ray towards (1.5, 0, -6) passes the axis at 1.48 at
+    // that height: it misses the course's cone and hits the wider one.
     let scene = "8 6\n0 0 3\n23\n1 1 1\n0 0 0\n0 0 0\n0 -2 -6\n0 1 0\n2 4\n";
     let scene = legacy_rt::load(scene).unwrap();
-    let options = Options::new(4, 3).with_variant(Variant::ConeScale).unwrap();
-    let k = |scene: &legacy_rt::Scene| match &scene.objects[0].shape {
+    let k = match &scene.objects[0].shape {
         Shape::Cone(cone) => cone.k(),
         other => panic!("{other:?}"),
     };
-    assert_eq!(k(&scene), (2.0f64 / 4.0).powi(2)); // (r/h)²
-    assert_eq!(k(&options.deviations.scene(&scene)), 2.0 * 2.0 / 4.0); // r²/h
+    assert_eq!(k, (2.0f64 / 4.0).powi(2)); // (r/h)²
+    let ray = Ray::new(
+        DVec3::new(0.0, 0.0, 3.0),
+        DVec3::new(1.5, 0.0, -9.0).normalize(),
+    );
+    let options = Options::new(4, 3);
+    assert_eq!(render::ray_trace(&scene, &options, ray), DVec3::ZERO);
+    let scaled = options.with_variant(Variant::of(Kind::ConeScale)).unwrap();
+    assert!(render::ray_trace(&scene, &scaled, ray).x > 0.0);
 }
 
 #[test]
@@ -172,7 +190,7 @@ fn nearer_root_misses_the_inside_of_an_open_cylinder() {
     let colour = render::ray_trace(&scene, &options, ray);
     let distance = DVec3::new(1.0, 0.0, -10.0).length();
     assert!((colour.x - 10.0 / distance).abs() < 1e-12, "{colour}");
-    let nearer = options.with_variant(Variant::NearerRoot).unwrap();
+    let nearer = options.with_variant(Variant::of(Kind::NearerRoot)).unwrap();
     assert_eq!(render::ray_trace(&scene, &nearer, ray), DVec3::ZERO);
 }
 
@@ -186,7 +204,7 @@ fn a_traced_pixel_has_the_bytes_of_the_variants_image() {
     let scene = legacy_rt::load(&text).unwrap();
     for variant in Variant::all() {
         let options = Options::new(32, 24).with_variant(variant).unwrap();
-        let image = render::render(&scene, &options, |_| {}).0;
+        let image = render::render(&scene, &options, |_| {});
         for (x, y) in [(3, 4), (16, 12), (30, 2), (10, 20)] {
             let trace = render::trace(&scene, &options, x, y).unwrap();
             let row = options.row_of(y);
@@ -198,7 +216,10 @@ fn a_traced_pixel_has_the_bytes_of_the_variants_image() {
             );
             assert!(
                 trace.readable(&scene).contains(&variant.id())
-                    || matches!(variant, Variant::MaxDist(_) | Variant::Kernel(_))
+                    || matches!(
+                        variant.kind,
+                        Kind::MaxDist | Kind::Textbook | Kind::TextbookF32
+                    )
             );
         }
     }

@@ -31,17 +31,19 @@
 //! accept a hit within [`slack`] of the bound, so a point the scene puts exactly on a
 //! bound does not flip from pixel to pixel on the rounding of t and of the ray.
 
-use super::{Kernel, Steps, Tangent};
+use super::{Kernel, Tangent};
 use super::{solve_quadratic, solve_quadratic_with_slope};
 use crate::shapes::kernel::dd::{
     Dd, scaled, scaled_product, square, sum_as_dd, sum_as_f64, two_prod, two_sum,
 };
-use crate::shapes::{AxisFrame, AxisQuadric, Plane, Quadric, Ray, Sphere};
+use crate::shapes::{
+    AxisFrame, AxisQuadric, HitNote, Notes, Plane, Quadric, Ray, RootRule, Sphere,
+};
 use glam::DVec3;
 
 /// The shipped kernel.
 #[derive(Debug, Clone, Copy, Default)]
-pub struct Accurate;
+pub(crate) struct Accurate;
 
 /// Refine when the estimated error exceeds this many EPS |t|. Set on the hard-case suite
 /// (seed 0x2026_1121): at 8 the largest error is 3.64 ulps, at 16 it is 4.94 and at 32
@@ -92,9 +94,9 @@ impl RootError {
     }
 }
 
-/// The accurate kernel's ray: step 1's result, and the local ray it gives.
+/// Step 1's result for a ray and a shape: the recentred ray, and the local ray it gives.
 #[derive(Clone, Copy)]
-pub struct Near {
+struct Near {
     /// The recentring about the shape's centre (or a `QUADRIC`'s anchor).
     start: Recentred,
     /// B'' - C in the local frame.
@@ -103,42 +105,11 @@ pub struct Near {
     dir: DVec3,
 }
 
-/// A root s of the recentred quadratic (t = s0 + s) and the slope sqrt(b² - 4ac) there.
-#[derive(Clone, Copy)]
-pub struct Root {
-    s: f64,
-    slope: f64,
-}
-
-impl Kernel for Accurate {
-    const NAME: &'static str = "accurate";
-    type Local = Near;
-    type Coefficients = (f64, f64, f64);
-    type Root = Root;
-
-    #[inline]
-    fn axis_quadric(quadric: &AxisQuadric, ray: &Ray) -> Option<f64> {
-        axis_hit(quadric, ray)
-    }
-
-    /// Most rays of a scene miss most spheres: `certainly_misses` says so in a few
-    /// plain f64 operations, and only the other rays take the accurate path.
-    #[inline]
-    fn sphere(sphere: &Sphere, ray: &Ray) -> Option<f64> {
-        if certainly_misses(sphere, ray) {
-            return None;
-        }
-        axis_hit(&sphere.equation, ray)
-    }
-
-    #[inline]
-    fn quadric(quadric: &Quadric, ray: &Ray) -> Option<f64> {
-        quadric_hit(quadric, ray)
-    }
-
-    /// Step 1: B'' = B + s0 D next to the centre (`recentre`), then `rotmat`.
+impl Near {
+    /// Step 1 for a quadric 21-24 or a sphere: B'' = B + s0 D next to the centre
+    /// ([`recentre`]), then `rotmat`.
     #[inline(always)]
-    fn local_ray(frame: &AxisFrame, ray: &Ray) -> Near {
+    fn of_axis_quadric(frame: &AxisFrame, ray: &Ray) -> Near {
         let start = recentre(ray, frame.centre);
         Near {
             start,
@@ -147,112 +118,9 @@ impl Kernel for Accurate {
         }
     }
 
+    /// Step 1 about the anchor x0 of a `QUADRIC`'s centred form (`Centred`); no rotation.
     #[inline(always)]
-    fn coefficients(quadric: &AxisQuadric, local: &Near) -> (f64, f64, f64) {
-        quadric.coefficients(local.near, local.dir)
-    }
-
-    #[inline(always)]
-    fn roots((a, b, c): (f64, f64, f64), tangent: Tangent) -> Option<[Root; 2]> {
-        let (roots, slope) = solve_quadratic_with_slope(a, b, c)?;
-        // The slope is sqrt(b² - 4ac): zero exactly where the discriminant is.
-        if !tangent.real(slope) {
-            return None;
-        }
-        Some(roots.map(|s| Root { s, slope }))
-    }
-
-    /// The sphere's nearer root needs one division, not two (`nearer_root`).
-    #[inline(always)]
-    fn nearer_root((a, b, c): (f64, f64, f64)) -> Option<Root> {
-        let (s, slope) = nearer_root(a, b, c)?;
-        Some(Root { s, slope })
-    }
-
-    /// Steps 2 and 3 for the sphere's root.
-    #[inline(always)]
-    fn nearer_distance(steps: &Steps<AxisQuadric, Self>, root: Root) -> Option<f64> {
-        let Near { start, near, dir } = *steps.local;
-        let (quadric, a) = (steps.shape, steps.abc.0);
-        let t = start.shift + root.s;
-        let error = RootError {
-            spread: Spread::new(quadric, near, dir).at(root.s),
-            slope: root.slope,
-        };
-        let t = if error.needs_refining(t) {
-            // From just outside, heading in, the base gives the root directly.
-            just_outside(quadric, steps.ray, start.offset, start.offset_error, a)
-                .unwrap_or_else(|| refine_axis(steps, t, 0).0)
-        } else {
-            t
-        };
-        t.is_finite().then_some(t)
-    }
-
-    /// Steps 2 and 3 for a root of a bounded quadric.
-    #[inline(always)]
-    fn distance_and_height(
-        steps: &Steps<AxisQuadric, Self>,
-        root: Root,
-        index: usize,
-        (low, high): (f64, f64),
-    ) -> Result<(f64, f64), (f64, f64)> {
-        let Near { start, near, dir } = *steps.local;
-        let (s, t) = (root.s, start.shift + root.s);
-        let error = RootError {
-            spread: Spread::new(steps.shape, near, dir).at(s),
-            slope: root.slope,
-        };
-        let y = near.y + s * dir.y;
-        // A root out of bounds (or behind the base) by more than twice its estimated
-        // error stays out after refining: skip it unrefined.
-        let outside = (-t).max(low - y).max(y - high);
-        let slack = Self::bound_slack(steps.local, t);
-        if outside > 0.0 && error.clearly_beyond(outside, t, slack) {
-            return Err((t, y));
-        }
-        Ok(if error.needs_refining(t) {
-            refine_axis(steps, t, index)
-        } else {
-            (t, y)
-        })
-    }
-
-    /// `slack` of the sizes that computed the local y.
-    #[inline(always)]
-    fn bound_slack(local: &Near, t: f64) -> f64 {
-        let Recentred { offset, shift, .. } = local.start;
-        slack(offset.abs().max_element() + shift.abs() + t.abs())
-    }
-
-    #[inline]
-    fn plane_distance(plane: &Plane, ray: &Ray) -> Option<f64> {
-        let n = plane.normal;
-        let (over, under) = (n * (plane.point - ray.base), n * ray.dir);
-        let (numerator, denominator) = (over.element_sum(), under.element_sum());
-        // Each dot product is good to a few ulps unless its terms cancel.
-        let cancels = |dot: f64, terms: DVec3| 2.0 * dot.abs() < terms.abs().element_sum();
-        if cancels(numerator, over) || cancels(denominator, under) {
-            return plane_dd(plane, ray);
-        }
-        if denominator == 0.0 {
-            return None;
-        }
-        Some(numerator / denominator)
-    }
-
-    /// A hit meant to lie on the screen (z = 0: a floor through the bottom edge of the
-    /// window) comes out at z = ±1e-16 from the rounding of the ray's direction, and would
-    /// flip from pixel to pixel; within a few ulps of the terms it counts as on the
-    /// screen, which §5.1 draws.
-    #[inline(always)]
-    fn screen_slack(ray: &Ray, t: f64) -> f64 {
-        slack(ray.base.z.abs() + t.abs())
-    }
-
-    /// Step 1 about the anchor x0 of the quadric's centred form (`Centred`); no rotation.
-    #[inline(always)]
-    fn quadric_ray(quadric: &Quadric, ray: &Ray) -> Near {
+    fn of_quadric(quadric: &Quadric, ray: &Ray) -> Near {
         let start = recentre(ray, quadric.centred.anchor);
         Near {
             start,
@@ -261,45 +129,206 @@ impl Kernel for Accurate {
         }
     }
 
-    /// f(x0 + u + s D) = a s² + b s + c with u = B'' - x0.
+    /// `slack` of the sizes that computed a local coordinate at `t`.
     #[inline(always)]
-    fn quadric_coefficients(quadric: &Quadric, local: &Near) -> (f64, f64, f64) {
-        let (centred, near, dir) = (&quadric.centred, local.near, local.dir);
-        let m_dir = centred.second_order * dir;
-        let m_near = centred.second_order * near;
-        let a = dir.dot(m_dir);
-        let b = 2.0 * (near.dot(m_dir) + centred.gradient.dot(dir));
-        let c = near.dot(m_near) + 2.0 * centred.gradient.dot(near) + centred.value;
-        (a, b, c)
+    fn bound_slack(&self, t: f64) -> f64 {
+        let Recentred { offset, shift, .. } = self.start;
+        slack(offset.abs().max_element() + shift.abs() + t.abs())
+    }
+}
+
+impl Kernel for Accurate {
+    /// Most rays of a scene miss most spheres: `certainly_misses` says so in a few plain
+    /// f64 operations, and only the other rays take the accurate path. (A trace, which
+    /// wants the reasons, takes the accurate path for every ray: the same t.)
+    #[inline]
+    fn sphere<N: Notes>(sphere: &Sphere, ray: &Ray, notes: &mut N) -> Option<f64> {
+        if N::KEPT {
+            return axis_quadric_hit(&sphere.equation, ray, notes);
+        }
+        if certainly_misses(sphere, ray) {
+            return None;
+        }
+        axis_hit(&sphere.equation, ray)
     }
 
-    /// Steps 2 and 3 for a root of a `QUADRIC`.
-    #[inline(always)]
-    fn quadric_distance(
-        steps: &Steps<Quadric, Self>,
-        root: Root,
-        index: usize,
-    ) -> Result<f64, f64> {
-        let (centred, local) = (&steps.shape.centred, *steps.local);
-        let t = local.start.shift + root.s;
-        let reach = root.s.abs() * local.dir.abs() + local.near.abs();
+    #[inline]
+    fn axis_quadric<N: Notes>(quadric: &AxisQuadric, ray: &Ray, notes: &mut N) -> Option<f64> {
+        match N::KEPT {
+            true => axis_quadric_hit(quadric, ray, notes),
+            false => axis_hit(quadric, ray),
+        }
+    }
+
+    #[inline]
+    fn quadric<N: Notes>(quadric: &Quadric, ray: &Ray, notes: &mut N) -> Option<f64> {
+        match N::KEPT {
+            true => quadric_hit_noted(quadric, ray, notes),
+            false => quadric_hit(quadric, ray),
+        }
+    }
+
+    /// The plane's t = N·(Q - B) / N·D, each dot product recomputed with its rounding
+    /// errors where its terms cancel; a hit meant to lie on the screen (z = 0: a floor
+    /// through the bottom edge of the window) comes out at z = ±1e-16 from the rounding of
+    /// the ray's direction, and within a few ulps of the terms it counts as on the
+    /// screen, which §5.1 draws.
+    #[inline]
+    fn plane<N: Notes>(plane: &Plane, ray: &Ray, notes: &mut N) -> Option<f64> {
+        let n = plane.normal;
+        let (over, under) = (n * (plane.point - ray.base), n * ray.dir);
+        let (numerator, denominator) = (over.element_sum(), under.element_sum());
+        // Each dot product is good to a few ulps unless its terms cancel.
+        let cancels = |dot: f64, terms: DVec3| 2.0 * dot.abs() < terms.abs().element_sum();
+        let t = if cancels(numerator, over) || cancels(denominator, under) {
+            plane_dd(plane, ray)
+        } else {
+            (denominator != 0.0).then(|| numerator / denominator)
+        };
+        let Some(t) = t else {
+            notes.note(HitNote::Parallel);
+            return None;
+        };
+        plane.verdict(ray, t, || slack(ray.base.z.abs() + t.abs()), notes)
+    }
+}
+
+/// Note 003's algorithm for the sphere and the quadrics 21-24 in this kernel's steps:
+/// the recentred local ray, a, b and c, the stable roots, then spec §5's rule on each,
+/// refined only where its estimated error says so.
+#[inline(always)]
+fn axis_quadric_hit(quadric: &AxisQuadric, ray: &Ray, notes: &mut impl Notes) -> Option<f64> {
+    // Step 1.
+    let local = Near::of_axis_quadric(&quadric.frame, ray);
+    let (a, b, c) = quadric.coefficients(local.near, local.dir);
+    match quadric.rule {
+        // The sphere: the smaller root of a discriminant > 0, even when negative.
+        RootRule::Nearer => {
+            let Some((s, slope)) = nearer_root(a, b, c) else {
+                notes.note(HitNote::NoRealRoot);
+                return None;
+            };
+            let t = sphere_distance(quadric, ray, &local, a, s, slope);
+            notes.note(HitNote::Nearer { t });
+            t
+        }
+        // The smallest positive root whose local y is within bounds; a zero
+        // discriminant counts.
+        rule => {
+            let Some((roots, slope)) = solve_quadratic_with_slope(a, b, c)
+                .filter(|&(_, slope)| Tangent::Counts.real(slope))
+            else {
+                notes.note(HitNote::NoRealRoot);
+                return None;
+            };
+            let judge = |index, s| {
+                let (t, y, settled) = distance_and_height(quadric, ray, &local, a, s, slope, index);
+                (t, y, settled && rule.accepts(t, y, || local.bound_slack(t)))
+            };
+            rule.first_within(roots, judge, notes)
+        }
+    }
+}
+
+/// Steps 2 and 3 for the sphere's root s: t, refined where needed; `None` if it is not a
+/// finite number.
+#[inline(always)]
+fn sphere_distance(
+    quadric: &AxisQuadric,
+    ray: &Ray,
+    local: &Near,
+    a: f64,
+    s: f64,
+    slope: f64,
+) -> Option<f64> {
+    let Near { start, near, dir } = *local;
+    let t = start.shift + s;
+    let error = RootError {
+        spread: Spread::new(quadric, near, dir).at(s),
+        slope,
+    };
+    let t = if error.needs_refining(t) {
+        // From just outside, heading in, the base gives the root directly.
+        just_outside(quadric, ray, start.offset, start.offset_error, a)
+            .unwrap_or_else(|| refine_axis(quadric, ray, local, a, t, 0).0)
+    } else {
+        t
+    };
+    t.is_finite().then_some(t)
+}
+
+/// Steps 2 and 3 for root `index` (s) of a bounded quadric: t and the local y, and
+/// whether they are settled. A root out of bounds (or behind the base) by more than twice
+/// its estimated error stays out after refining: it is returned unrefined and unsettled.
+#[inline(always)]
+fn distance_and_height(
+    quadric: &AxisQuadric,
+    ray: &Ray,
+    local: &Near,
+    a: f64,
+    s: f64,
+    slope: f64,
+    index: usize,
+) -> (f64, f64, bool) {
+    let Near { start, near, dir } = *local;
+    let t = start.shift + s;
+    let error = RootError {
+        spread: Spread::new(quadric, near, dir).at(s),
+        slope,
+    };
+    let y = near.y + s * dir.y;
+    let (low, high) = quadric.rule.bounds();
+    let outside = (-t).max(low - y).max(y - high);
+    if outside > 0.0 && error.clearly_beyond(outside, t, local.bound_slack(t)) {
+        return (t, y, false);
+    }
+    let (t, y) = if error.needs_refining(t) {
+        refine_axis(quadric, ray, local, a, t, index)
+    } else {
+        (t, y)
+    };
+    (t, y, true)
+}
+
+/// Note 004's algorithm for a `QUADRIC` in this kernel's steps: f(x0 + u + s D) =
+/// a s² + b s + c about the anchor, the stable roots, the first in front of the base,
+/// refined only where its estimated error says so.
+#[inline(always)]
+fn quadric_hit_noted(quadric: &Quadric, ray: &Ray, notes: &mut impl Notes) -> Option<f64> {
+    let local = Near::of_quadric(quadric, ray);
+    let (centred, near, dir) = (&quadric.centred, local.near, local.dir);
+    let m_dir = centred.second_order * dir;
+    let m_near = centred.second_order * near;
+    let a = dir.dot(m_dir);
+    let b = 2.0 * (near.dot(m_dir) + centred.gradient.dot(dir));
+    let c = near.dot(m_near) + 2.0 * centred.gradient.dot(near) + centred.value;
+    let Some((roots, slope)) =
+        solve_quadratic_with_slope(a, b, c).filter(|&(_, slope)| Tangent::Counts.real(slope))
+    else {
+        notes.note(HitNote::NoRealRoot);
+        return None;
+    };
+    let judge = |index, s: f64| {
+        let t = local.start.shift + s;
+        let reach = s.abs() * local.dir.abs() + local.near.abs();
         let m_reach = centred.second_order_abs * reach;
         let gradient_abs = centred.gradient.abs();
         let value_size = reach.dot(m_reach) + 2.0 * gradient_abs.dot(reach) + centred.value.abs();
         let gradient_size = 2.0 * (m_reach + gradient_abs).element_sum();
         let error = RootError {
             spread: spread(value_size, gradient_size, reach),
-            slope: root.slope,
+            slope,
         };
+        // Behind the base by more than twice its error: it stays behind after refining.
         if t < 0.0 && error.clearly_beyond(-t, t, 0.0) {
-            return Err(t);
+            return (t, false);
         }
-        Ok(if error.needs_refining(t) {
-            refine_quadric(steps.shape, steps.ray, steps.abc.0, t, index)
-        } else {
-            t
-        })
-    }
+        match error.needs_refining(t) {
+            true => (refine_quadric(quadric, ray, a, t, index), true),
+            false => (t, true),
+        }
+    };
+    Quadric::first_in_front(roots, judge, notes)
 }
 
 /// The margin of [`certainly_misses`], 2^-46: 128 units in the last place of the sum it
@@ -332,7 +361,7 @@ fn certainly_misses(sphere: &Sphere, ray: &Ray) -> bool {
 /// of [`two_prod`] are then one instruction instead of a call to the C library's `fma`.
 /// Both copies compute the same bits.
 macro_rules! fma_dispatch {
-    ($(#[$meta:meta])* fn $name:ident($($arg:ident: $ty:ty),*) -> $ret:ty { $body:expr }) => {
+    ($(#[$meta:meta])* fn $name:ident($($arg:ident: $ty:ty),* $(,)?) -> $ret:ty { $body:expr }) => {
         $(#[$meta])*
         #[inline(never)]
         fn $name($($arg: $ty),*) -> $ret {
@@ -359,21 +388,28 @@ fma_dispatch!(
     }
 );
 fma_dispatch!(
-    /// Note 003's algorithm ([`AxisQuadric::hit`]) with this kernel's steps.
+    /// [`axis_quadric_hit`] without notes, as the render calls it.
     fn axis_hit(quadric: &AxisQuadric, ray: &Ray) -> Option<f64> {
-        quadric.hit::<Accurate>(ray)
+        axis_quadric_hit(quadric, ray, &mut ())
     }
 );
 fma_dispatch!(
-    /// Note 004's algorithm ([`Quadric::hit`]) with this kernel's steps.
+    /// [`quadric_hit_noted`] without notes, as the render calls it.
     fn quadric_hit(quadric: &Quadric, ray: &Ray) -> Option<f64> {
-        quadric.hit::<Accurate>(ray)
+        quadric_hit_noted(quadric, ray, &mut ())
     }
 );
 fma_dispatch!(
     /// [`refine_axis_any`], kept out of line so that the common path stays small.
-    fn refine_axis(steps: &Steps<AxisQuadric, Accurate>, t0: f64, index: usize) -> (f64, f64) {
-        refine_axis_any(steps, t0, index)
+    fn refine_axis(
+        quadric: &AxisQuadric,
+        ray: &Ray,
+        local: &Near,
+        a: f64,
+        t0: f64,
+        index: usize,
+    ) -> (f64, f64) {
+        refine_axis_any(quadric, ray, local, a, t0, index)
     }
 );
 fma_dispatch!(
@@ -671,9 +707,15 @@ fn correction(a: f64, slope: f64, value: f64, index: usize) -> f64 {
 
 /// Refines root `index` of an axis quadric; returns t and the local y of the hit.
 #[inline(always)]
-fn refine_axis_any(steps: &Steps<AxisQuadric, Accurate>, t0: f64, index: usize) -> (f64, f64) {
-    let (quadric, ray, a) = (steps.shape, steps.ray, steps.abc.0);
-    let Near { start, dir, .. } = *steps.local;
+fn refine_axis_any(
+    quadric: &AxisQuadric,
+    ray: &Ray,
+    local: &Near,
+    a: f64,
+    t0: f64,
+    index: usize,
+) -> (f64, f64) {
+    let Near { start, dir, .. } = *local;
     let (mut t, mut y) = (t0, f64::NAN);
     let Recentred {
         offset,
@@ -830,7 +872,7 @@ mod tests {
                 dir,
             };
             assert_eq!(
-                Accurate::axis_quadric(&sphere.equation, &ray),
+                Accurate::axis_quadric(&sphere.equation, &ray, &mut ()),
                 Some(-0.5),
                 "{dir}"
             );
@@ -858,21 +900,20 @@ mod tests {
                 (-angle.sin() * up + angle.cos() * side).normalize(),
             );
             let quadric = &sphere.equation;
-            let local = Accurate::local_ray(&quadric.frame, &ray);
-            let abc = Accurate::coefficients(quadric, &local);
-            let steps: Steps<_, Accurate> = Steps::new(quadric, &ray, &local, abc);
-            let (start, a) = (local.start, steps.abc.0);
+            let local = Near::of_axis_quadric(&quadric.frame, &ray);
+            let (a, _, _) = quadric.coefficients(local.near, local.dir);
+            let start = local.start;
             let direct = just_outside(quadric, &ray, start.offset, start.offset_error, a)
                 .expect("the base formula takes a ray from just outside");
             let t0 = start.shift - (start.near.length_squared() - radius * radius).abs().sqrt();
-            let (refined, _) = refine_axis_any(&steps, t0, 0);
+            let (refined, _) = refine_axis_any(quadric, &ray, &local, a, t0, 0);
             let ulp = f64::EPSILON * refined.abs();
             assert!(
                 (direct - refined).abs() <= 4.0 * ulp,
                 "r {radius} h {height}: {direct} against {refined}"
             );
             // And the shipped kernel returns it.
-            assert_eq!(Accurate::axis_quadric(quadric, &ray), Some(direct));
+            assert_eq!(Accurate::axis_quadric(quadric, &ray, &mut ()), Some(direct));
         }
     }
 }

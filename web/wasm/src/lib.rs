@@ -203,7 +203,7 @@ impl Session {
             return Err(thrown(format!("{problem}{limits}")));
         }
         let choices = choices(choices_json).map_err(thrown)?;
-        let options = (choices.options(width as usize, height as usize)).map_err(thrown)?;
+        let options = (choices.options(scene, width as usize, height as usize)).map_err(thrown)?;
         Ok((options, choices))
     }
 
@@ -211,7 +211,7 @@ impl Session {
     /// `ImageData` (alpha 255). It is kept for [`Session::png`] and [`Session::ppm`].
     pub fn render(&mut self, width: u32, height: u32, choices: &str) -> Result<Vec<u8>, JsError> {
         let (options, _) = self.options(width, height, choices)?;
-        let (image, _) = legacy_rt::render(self.scene()?, &options, |_| {});
+        let image = legacy_rt::render(self.scene()?, &options, |_| {});
         let rgba = rgba(&image);
         self.image = Some(image);
         Ok(rgba)

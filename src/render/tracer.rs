@@ -1,0 +1,291 @@
+//! The course's tracer: spec §4.2's ray_trace, one function ([`Tracer::trace`]), with
+//! the diffuse term of spec §4.3 ([`Tracer::diffuse`]) and the hit's surface and
+//! material ([`Tracer::surface`]) beside it. The objects answer the closest hit and the
+//! shadow test ([`Objects`]); the stage (spec §7.2) and the variants' [`Rules`] are
+//! values read where each rule lives; a [`Recorder`] is told each step, one line each.
+
+use super::objects::{From, Hit, Objects};
+use super::record::{Event, LightStep, Recorder};
+use super::shading::{Screen, material_and_pattern};
+use super::stage::{Show, Stage};
+use super::tiles::Tile;
+use super::variant::{Divisor, LightRules, ObjectRules, Rulebook};
+use super::{Camera, Options, object_colour};
+use crate::scene::{Light, Material, Scene};
+use crate::shapes::kernel::Kernel;
+use crate::shapes::{Ray, Surface, unit};
+use glam::{DVec2, DVec3};
+
+/// The scene, its objects and what every ray needs of the options.
+pub(crate) struct Tracer<'a, B> {
+    scene: &'a Scene,
+    /// The closest hit and the shadow test.
+    pub(crate) objects: Objects<'a, B>,
+    rules: B,
+    stage: Stage,
+    show: Option<Show>,
+    max_dist: f64,
+    /// What texture tile mode needs of the projection.
+    screen: Screen,
+}
+
+impl<'a, B: Rulebook> Tracer<'a, B> {
+    /// The tracer of `scene` (as its variants changed it) under `options` and `rules`,
+    /// with tiles for the camera's rays when a camera is given.
+    pub(crate) fn new(
+        scene: &'a Scene,
+        rules: B,
+        options: &Options,
+        camera: Option<&Camera>,
+    ) -> Tracer<'a, B> {
+        Tracer {
+            scene,
+            objects: Objects::new(scene, rules, options, camera),
+            rules,
+            stage: options.stage,
+            show: options.show,
+            max_dist: options.max_dist,
+            screen: Screen {
+                last_pixel: DVec2::new((options.width - 1) as f64, (options.height - 1) as f64),
+                window: scene.window,
+            },
+        }
+    }
+
+    /// The colour of a camera ray (with its tile's list, [`Objects::tile`]): the stage's
+    /// image, or the diagnostic image of `--show`. `K` is the render's kernel, chosen by
+    /// the caller once per render (`with_kernel!`) so that the tracer's queries run in
+    /// loops compiled for it.
+    #[inline(always)]
+    pub(crate) fn pixel<K: Kernel>(
+        &self,
+        ray: Ray,
+        tile: Option<Tile>,
+        rec: &mut impl Recorder,
+    ) -> DVec3 {
+        match self.show {
+            None => self.trace::<K>(ray, From::Eye(tile), rec),
+            Some(show) => self.show::<K>(ray, show, From::Eye(tile), rec),
+        }
+    }
+
+    /// ray_trace of spec §4.2 from `from` along `ray`, the mirror recursion as a loop: the
+    /// colour is Σ (S₁ ⊙ … ⊙ Sₖ) ⊙ Iₖ₊₁ / total_distₖ₊₁ over the bounces.
+    #[inline(always)]
+    pub(crate) fn trace<K: Kernel>(
+        &self,
+        mut ray: Ray,
+        mut from: From,
+        rec: &mut impl Recorder,
+    ) -> DVec3 {
+        let mut colour = DVec3::ZERO;
+        let mut weight = DVec3::ONE;
+        let mut total_dist = 0.0;
+        let bounces = self.rules.bounces();
+        for depth in 0..bounces + 1 {
+            // 1. A path longer than MAX_DIST is black from here.
+            if total_dist > self.max_dist {
+                rec.record(|| Event::CutOff { total_dist });
+                break;
+            }
+            rec.record(|| Event::Segment {
+                depth,
+                ray,
+                total_dist,
+            });
+            // 2. The closest hit, skipping the object the ray leaves; nothing: black.
+            let hit = self.objects.closest::<K>(&ray, from, rec);
+            rec.record(|| Event::Closest {
+                hit: hit.map(|h| (h.object, h.t)),
+            });
+            let Some(Hit { object, t }) = hit else { break };
+            let rules = self.rules.object(object);
+            // 3. The path grows by the segment.
+            total_dist += t;
+            let (surface, material) = self.surface(object, rules, &ray, t, total_dist, rec);
+            // 4. The ambient, and 5. every light's diffuse term.
+            let mut intensity = material.ambient;
+            if self.stage.lights() {
+                for (light, lamp) in self.scene.lights.iter().enumerate() {
+                    rec.record(|| Event::Lamp { light });
+                    let lamp_rules = self.rules.light(light);
+                    let contribution = match rules.unlit() {
+                        false => {
+                            self.diffuse::<K>(lamp, lamp_rules, object, &surface, &material, rec)
+                        }
+                        true => DVec3::ZERO,
+                    };
+                    intensity += contribution;
+                    rec.record(|| Event::Lit {
+                        light,
+                        contribution,
+                        intensity,
+                    });
+                }
+            }
+            // 6. I / total_dist.
+            let seen = intensity / self.divisor(total_dist, t);
+            colour += weight * seen;
+            rec.record(|| Event::Divided {
+                intensity,
+                total_dist,
+                seen,
+                weight,
+                colour,
+            });
+            // 7. The mirror: S ⊙ ray_trace(hit, R, total_dist, this object).
+            if depth == bounces || !self.reflects(rules, &material) {
+                break;
+            }
+            let d = ray.dir;
+            let Some(dir) = unit(d - 2.0 * d.dot(surface.normal) * surface.normal) else {
+                break;
+            };
+            weight *= material.specular;
+            ray = Ray {
+                base: surface.point,
+                dir,
+            };
+            from = From::Surface(object);
+        }
+        colour
+    }
+
+    /// Where `ray` meets `object` at `t`: the point, the normal (as computed, spec §4.4;
+    /// turned toward the ray under facing-normals, reversed under flipped-normal) and the
+    /// material there (tiles, textures, shaders).
+    #[inline]
+    fn surface(
+        &self,
+        object: usize,
+        rules: ObjectRules,
+        ray: &Ray,
+        t: f64,
+        total_dist: f64,
+        rec: &mut impl Recorder,
+    ) -> (Surface, Material) {
+        let record = &self.scene.objects[object];
+        let mut surface = record.shape.surface(ray, t);
+        if rules.facing_normals() && surface.normal.dot(ray.dir) > 0.0 {
+            surface.normal = -surface.normal;
+        }
+        if rules.flipped_normal() {
+            surface.normal = -surface.normal;
+        }
+        let (material, pattern) = material_and_pattern(record, &surface, &self.screen);
+        rec.record(|| Event::Surface {
+            object,
+            t,
+            total_dist,
+            surface,
+            material,
+            pattern,
+        });
+        (surface, material)
+    }
+
+    /// One light's diffuse term at a hit on `object` (spec §4.3): diffuse × emissivity ×
+    /// cos θ / dist, where the light faces the surface, its beam reaches it and no object
+    /// blocks the shadow ray.
+    #[inline]
+    fn diffuse<K: Kernel>(
+        &self,
+        light: &Light,
+        rules: LightRules,
+        object: usize,
+        surface: &Surface,
+        material: &Material,
+        rec: &mut impl Recorder,
+    ) -> DVec3 {
+        if material.diffuse == DVec3::ZERO {
+            rec.record(|| Event::Light(LightStep::NoDiffuse));
+            return DVec3::ZERO;
+        }
+        if rules.off() {
+            rec.record(|| Event::Light(LightStep::Off));
+            return DVec3::ZERO;
+        }
+        let to_light = light.location - surface.point;
+        let dist = to_light.length();
+        // A light at the hit point, or so far away that the distance overflowed, has no
+        // direction: no contribution rather than a NaN.
+        if dist.is_nan() || dist <= 0.0 || dist.is_infinite() {
+            rec.record(|| Event::Light(LightStep::NoDirection { dist }));
+            return DVec3::ZERO;
+        }
+        let u = to_light / dist;
+        let cos = surface.normal.dot(u);
+        rec.record(|| Event::Light(LightStep::Towards { u, dist, cos }));
+        if cos.is_nan() || cos <= 0.0 {
+            return DVec3::ZERO;
+        }
+        if let Some(beam) = &light.beam {
+            let along = (-u).dot(beam.direction);
+            let lit = along > beam.cos_limit;
+            rec.record(|| Event::Light(LightStep::Spot { along, lit }));
+            if !lit {
+                return DVec3::ZERO;
+            }
+        }
+        if self.stage.shadows() && !rules.unshadowed() {
+            let shadow = Ray {
+                base: surface.point,
+                dir: u,
+            };
+            rec.record(|| Event::Light(LightStep::ShadowRay { ray: shadow }));
+            if self.objects.blocked::<K>(&shadow, object, dist, rec) {
+                return DVec3::ZERO;
+            }
+        }
+        let falloff = if rules.square_falloff() {
+            dist * dist
+        } else {
+            dist
+        };
+        material.diffuse * light.emissivity * (cos / falloff)
+    }
+
+    /// What step 6 of spec §4.2 divides by: the path's length, or under a variant this
+    /// segment's, or nothing.
+    #[inline(always)]
+    fn divisor(&self, total_dist: f64, t: f64) -> f64 {
+        match self.rules.divisor() {
+            Divisor::Path => total_dist,
+            Divisor::Segment => t,
+            Divisor::Nothing => 1.0,
+        }
+    }
+
+    /// Whether a mirror ray leaves an object with these `rules` and this `material` (spec
+    /// §4.5): its specular is not zero, the stage reflects, and no variant stops it.
+    #[inline(always)]
+    fn reflects(&self, rules: ObjectRules, material: &Material) -> bool {
+        material.specular != DVec3::ZERO && self.stage.reflects() && !rules.no_mirror()
+    }
+
+    /// The diagnostic image of `show` at the first hit along `ray`.
+    fn show<K: Kernel>(&self, ray: Ray, show: Show, from: From, rec: &mut impl Recorder) -> DVec3 {
+        rec.record(|| Event::Segment {
+            depth: 0,
+            ray,
+            total_dist: 0.0,
+        });
+        let hit = self.objects.closest::<K>(&ray, from, rec);
+        rec.record(|| Event::Closest {
+            hit: hit.map(|h| (h.object, h.t)),
+        });
+        let Some(Hit { object, t }) = hit else {
+            return DVec3::ZERO;
+        };
+        let colour = match show {
+            Show::Normals => {
+                let normal = self.scene.objects[object].shape.surface(&ray, t).normal;
+                (normal + DVec3::ONE) / 2.0
+            }
+            Show::Objects => object_colour(object),
+            Show::Depth => DVec3::splat(1.0 - t / self.max_dist),
+        };
+        rec.record(|| Event::Shown { show, colour });
+        colour
+    }
+}
