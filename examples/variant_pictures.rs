@@ -7,13 +7,15 @@
 //! docs/variants.png has one row per variant of spec §7.3, in the order of
 //! docs/variants.md: the reference, the image as if with the variant, and `compare`'s diff
 //! image of the two, each 96x72, on a scene where the variant shows. docs/compare-diff.png
-//! is the diff image of a student's examples/shadows.txt rendered without shadow rays.
+//! is the diff image of a student's examples/shadows.txt rendered without shadow rays,
+//! docs/compare-fragile.png that of a single-precision studio without one light's shadows.
 //! It also writes docs/variants.md's table of the variants, from the program's own table
 //! (`legacy_rt::render::variant::markdown_table`). Needs ../shared/course-scenes beside
 //! the repository.
 
-use legacy_rt::compare::diff_image;
-use legacy_rt::render::{Image, Kind, Options, Variant, render};
+use legacy_rt::compare::{self, Reference, diff_image};
+use legacy_rt::render::{Image, Options, Variant, render};
+use legacy_rt::shapes::kernel::KernelChoice;
 
 const TILE: (usize, usize) = (96, 72);
 
@@ -86,7 +88,7 @@ fn main() {
         let reference = render(&scene, &options, |_| {});
         let deviating = options.with_variant(variant).expect("one variant applies");
         let student = render(&scene, &deviating, |_| {});
-        let diff = diff_image(&reference, &student, 0).expect("one size");
+        let diff = diff_image(&Reference::image(reference.clone()), &student, 0).expect("one size");
         for (column, tile) in [&reference, &student, &diff].into_iter().enumerate() {
             let (x0, y0) = (column * (w + 4), row * (h + 4));
             for (i, &pixel) in tile.pixels.iter().enumerate() {
@@ -101,11 +103,29 @@ fn main() {
     let options = Options::new(320, 240);
     let reference = render(&scene, &options, |_| {});
     let no_shadows = options
-        .with_variant(Variant::of(Kind::NoShadows))
+        .with_variant(Variant::parse("no-shadows").expect("a variant"))
         .expect("applies");
     let student = render(&scene, &no_shadows, |_| {});
     save(
-        &diff_image(&reference, &student, 0).expect("one size"),
+        &diff_image(&Reference::image(reference), &student, 0).expect("one size"),
         "docs/compare-diff.png",
+    );
+
+    // A student in single precision who forgot the shadows of the studio's first light:
+    // the missing shadows in red and yellow, the pixels single precision decides otherwise
+    // (grazing rays, tile edges, bytes at a step) in purple: fragile, excused.
+    let scene = load("examples/studio.txt");
+    let light = format!("unshadowed@{}", scene.lights[0].line);
+    let student_options = Options {
+        kernel: KernelChoice::TextbookF32,
+        ..options
+            .with_variant(Variant::parse(&light).expect("a variant"))
+            .expect("applies")
+    };
+    let student = render(&scene, &student_options, |_| {});
+    let reference = compare::reference(&scene, &options, &student, compare::F32);
+    save(
+        &diff_image(&reference, &student, 0).expect("one size"),
+        "docs/compare-fragile.png",
     );
 }

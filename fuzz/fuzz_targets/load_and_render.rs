@@ -1,10 +1,11 @@
 //! What users run, on any input: load the text, and if it is a scene, dump it and
-//! render it small, with the hierarchy and with the course's linear scan (which must
-//! agree). A panic, a hang or an allocation failure anywhere is a finding.
+//! render it small, with the hierarchy, with the course's linear scan and with
+//! `compare`'s margins (which must agree). A panic, a hang or an allocation failure anywhere is a finding.
 
 #![no_main]
 
-use legacy_rt::render::{Options, render};
+use legacy_rt::compare;
+use legacy_rt::render::{Options, render, render_with_margins};
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {
@@ -14,10 +15,13 @@ fuzz_target!(|data: &[u8]| {
     };
     let _ = legacy_rt::dump(&scene);
     let options = Options::new(8, 6);
-    let (image, _) = render(&scene, &options, |_| {});
+    let image = render(&scene, &options, |_| {});
     let linear = Options {
         accelerate: false,
         ..options
     };
-    assert!(image.pixels == render(&scene, &linear, |_| {}).0.pixels);
+    assert!(image.pixels == render(&scene, &linear, |_| {}).pixels);
+    // compare's reference, rendered with its margins, is the same image.
+    let (reference, fragility, _) = render_with_margins(&scene, &options, compare::F32);
+    assert!(reference.pixels == image.pixels && fragility.len() == image.pixels.len());
 });

@@ -29,13 +29,13 @@ fuzz_target!(|data: &[u8]| {
         diagnose: false,
     };
     // A reference of the same size that is not the student's.
-    let reference = Image {
+    let reference = compare::Reference::image(Image {
         width: student.width,
         height: student.height,
         pixels: (0..student.pixels.len())
             .map(|i| [i as u8, (i >> 8) as u8, 255 - i as u8])
             .collect(),
-    };
+    });
     let report = compare::report(&reference, &student, None, &settings).unwrap();
     let _ = compare::text::text(&report, "reference", "student", None);
     let _ = serde_json::to_string(&report).unwrap();
@@ -45,8 +45,10 @@ fuzz_target!(|data: &[u8]| {
     if (2..=48).contains(&student.width) && (2..=48).contains(&student.height) {
         let scene = legacy_rt::load(SCENE).unwrap();
         let options = Options::new(student.width, student.height);
-        let rendered = render(&scene, &options, |_| {}).0;
+        let rendered = compare::reference(&scene, &options, &student, compare::F32);
+        assert!(rendered.image == render(&scene, &options, |_| {}));
         let report = compare::report(&rendered, &student, Some((&scene, &options)), &settings);
         let _ = compare::text::text(&report.unwrap(), "scene.txt", "student", None);
+        let _ = compare::diff_image(&rendered, &student, 0).unwrap();
     }
 });

@@ -32,8 +32,15 @@ P3, 8 bits) or PNG, regular files of at most --max-pixels pixels (4096x4096 unle
 raised). Exit status: 0 when the images match within the tolerance, 1 when they differ
 (or, with --size, when the student's image has another size: verdict wrong-size), 2 on an
 error (an unreadable, damaged, truncated, grey or 16-bit image, a pipe or device, images
-of two sizes, a scene that does not load). The diff image shows the reference in grey where the
-pixels match, and differing pixels in blue (1-3 levels), yellow (4-31) or red (32-255).";
+of two sizes, a scene that does not load).
+
+With a scene, the images match when every pixel the reference is sure of is equal (within
+--tolerance). Where one of the reference's decisions came within --precision of going the
+other way (a grazing ray, a shadow's edge, a tile's edge, a byte at a step) the pixel is
+fragile: a correct tracer may get it otherwise, and a difference there is reported but
+not counted. The diff image shows the reference in grey where the pixels match,
+differences on fragile pixels in purple, and the others in blue (1-3 levels), yellow
+(4-31) or red (32-255).";
 
 /// The comparison's arguments.
 #[derive(clap::Args, Debug)]
@@ -50,18 +57,26 @@ pub struct CompareArgs {
     #[arg(long, value_name = "N", default_value_t = Tolerance::default().levels)]
     tolerance: u8,
 
-    /// The share of pixels, in percent, that may differ beyond the tolerance while the
-    /// images still match [default: 0.5]
+    /// The share of pixels, in percent, that may differ beyond the tolerance on pixels
+    /// the reference is sure of while the images still match [default: 0]
     #[arg(long, value_name = "PCT", value_parser = percent)]
     allow: Option<f64>,
 
+    /// The arithmetic a correct tracer is granted: f32 (the default, single precision),
+    /// f64, or a relative precision such as 1e-6. Pixels whose decisions came closer than
+    /// this to going the other way are fragile, and a difference there is excused
+    #[arg(long, value_name = "f32|f64|NUMBER", value_parser = precision)]
+    precision: Option<f64>,
+
     /// Print the report as JSON (keys: verdict, width, height, differing_pixels,
-    /// differing_fraction, max_channel_difference, groups, worst, diagnosis, ...)
+    /// fragile_pixels, differing_fragile_pixels, differing_fraction,
+    /// max_channel_difference, groups, worst, diagnosis, ...)
     #[arg(long)]
     json: bool,
 
     /// Also write a diff image to FILE (PNG, or PPM for .ppm): the reference in grey,
-    /// differing pixels blue (1-3 levels), yellow (4-31) or red (32 or more)
+    /// differing pixels blue (1-3 levels), yellow (4-31) or red (32 or more), purple
+    /// where the reference's pixel is fragile (excused)
     #[arg(long, value_name = "FILE")]
     diff: Option<PathBuf>,
 
@@ -98,6 +113,22 @@ fn percent(text: &str) -> Result<f64, String> {
     match text.trim_end_matches('%').parse::<f64>() {
         Ok(p) if (0.0..=100.0).contains(&p) => Ok(p),
         _ => Err("expected a percentage from 0 to 100, such as 0.5".to_string()),
+    }
+}
+
+/// Parses `--precision`: f32, f64 or a relative precision from 0 to 0.01 (the reach of
+/// the margins' recording).
+fn precision(text: &str) -> Result<f64, String> {
+    match text {
+        "f32" => Ok(compare::F32),
+        "f64" => Ok(compare::F64),
+        _ => match text.parse::<f64>() {
+            Ok(p) if (0.0..=legacy_rt::render::MAX_PRECISION).contains(&p) => Ok(p),
+            _ => Err(
+                "expected f32, f64 or a relative precision from 0 to 0.01, such as 1e-6"
+                    .to_string(),
+            ),
+        },
     }
 }
 
@@ -161,6 +192,7 @@ fn run_inner(args: &CompareArgs) -> Result<bool, Failure> {
         tolerance: Tolerance {
             levels: args.tolerance,
             allow: args.allow.unwrap_or(Tolerance::default().allow * 100.0) / 100.0,
+            precision: args.precision.unwrap_or(Tolerance::default().precision),
         },
         worst: args.worst,
         diagnose: args.diagnose,
@@ -185,7 +217,8 @@ fn run_inner(args: &CompareArgs) -> Result<bool, Failure> {
                 threads: args.threads,
                 ..args.how.options(&scene, w, h)?
             };
-            let reference = compare::reference(&scene, &options, &student);
+            let precision = settings.tolerance.precision;
+            let reference = compare::reference(&scene, &options, &student, precision);
             (reference, Some(scene), Some(options))
         }
         false => {
@@ -199,7 +232,7 @@ fn run_inner(args: &CompareArgs) -> Result<bool, Failure> {
             }
             drop(first);
             let reference = read_image(&args.reference, "reference image", args.max_pixels)?;
-            (reference, None, None)
+            (compare::Reference::image(reference), None, None)
         }
     };
     let with_scene = scene.as_ref().zip(options.as_ref());

@@ -24,23 +24,64 @@ use serde::Serialize;
 pub struct Tolerance {
     /// The largest per-channel difference, in byte levels, that still counts as equal.
     pub levels: u8,
-    /// The share of pixels (0 to 1) that may differ by more.
+    /// The share of pixels (0 to 1) that may differ by more on pixels the reference is
+    /// sure of.
     pub allow: f64,
+    /// The relative precision of the arithmetic a correct tracer is granted: where a
+    /// decision of the reference came closer than this to going the other way, the
+    /// pixel is fragile and a difference there is excused ([`render::Fragility`]).
+    pub precision: f64,
 }
 
+/// The precision of `--precision f32`: what a correct tracer in single precision needs
+/// (docs/compare.md has the measurements that chose it).
+pub const F32: f64 = 16.0 * f32::EPSILON as f64;
+
+/// The precision of `--precision f64`, for a tracer in double precision.
+pub const F64: f64 = 16.0 * f64::EPSILON;
+
 impl Default for Tolerance {
-    /// 0 levels and 0.5 % of the pixels. The course's byte rule truncates (spec §4.7), so
-    /// a tracer that computes what the spec says gets the same bytes; where it does not,
-    /// it is a mistake and shows as a level or more. What a correct tracer does differ in
-    /// are silhouettes: a few pixels where the notes' root formula rounds a grazing ray
-    /// the other way, at most 0.163 % of a course scene (a02, a03) at 640x480 with
-    /// `--kernel textbook`. 0.5 % leaves room for that at smaller sizes too
-    /// (docs/compare.md has the measurements).
+    /// 0 levels, no pixel the reference is sure of, and the precision of single
+    /// precision arithmetic. The course's byte rule truncates (spec §4.7), so a tracer
+    /// that computes what the spec says gets the same bytes wherever the reference's
+    /// decisions are not fragile; where it does not, it is a mistake. A correct tracer
+    /// differs only on fragile pixels: silhouettes where a grazing ray's root rounds the
+    /// other way, tile edges, bytes at a step (docs/compare.md).
     fn default() -> Self {
         Tolerance {
             levels: 0,
-            allow: 0.005,
+            allow: 0.0,
+            precision: F32,
         }
+    }
+}
+
+/// The reference image and, when it was rendered from the scene, how sure it is of each
+/// pixel and which object each camera ray hits first (output order).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Reference {
+    /// The reference's pixels.
+    pub image: Image,
+    /// Per pixel, what a correct tracer may get otherwise; empty for an image given as
+    /// the reference (then no pixel is excused).
+    pub fragility: Vec<render::Fragility>,
+    /// Per pixel, the object the camera ray hits first; empty for an image.
+    pub hits: Vec<render::FirstHit>,
+}
+
+impl Reference {
+    /// A reference given as an image: nothing is known of its pixels.
+    pub fn image(image: Image) -> Reference {
+        Reference {
+            image,
+            fragility: Vec::new(),
+            hits: Vec::new(),
+        }
+    }
+
+    /// Pixel `i`'s fragility (none for an image).
+    pub fn fragility(&self, i: usize) -> render::Fragility {
+        self.fragility.get(i).copied().unwrap_or_default()
     }
 }
 
@@ -114,6 +155,8 @@ pub struct Worst {
     pub student: [u8; 3],
     /// The largest channel difference.
     pub difference: u8,
+    /// Whether the difference is excused: the reference's pixel is fragile.
+    pub fragile: bool,
     /// The command that explains the reference's pixel, when the command line knows the
     /// scene's file name.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -135,8 +178,15 @@ pub struct Report {
     pub tolerance: u8,
     /// The share of pixels allowed beyond it (0 to 1).
     pub allow: f64,
+    /// The precision granted to a correct tracer (relative).
+    pub precision: f64,
     /// Pixels with a channel differing by more than the tolerance.
     pub differing_pixels: usize,
+    /// Pixels where a correct tracer may get another colour: some decision of the
+    /// reference came within the precision of going the other way (0 without a scene).
+    pub fragile_pixels: usize,
+    /// Differing pixels excused as fragile: not counted against the image.
+    pub differing_fragile_pixels: usize,
     /// Their share (0 to 1).
     pub differing_fraction: f64,
     /// The largest channel difference anywhere.
@@ -206,7 +256,10 @@ pub fn wrong_size(student: &Image, expected: (usize, usize), settings: &Settings
         pixels: 0,
         tolerance: settings.tolerance.levels,
         allow: settings.tolerance.allow,
+        precision: settings.tolerance.precision,
         differing_pixels: 0,
+        fragile_pixels: 0,
+        differing_fragile_pixels: 0,
         differing_fraction: 0.0,
         max_channel_difference: 0,
         mean_absolute_error: 0.0,
@@ -217,24 +270,31 @@ pub fn wrong_size(student: &Image, expected: (usize, usize), settings: &Settings
     }
 }
 
-/// The reference of `scene` under `options`, at the student image's size.
-pub fn reference(scene: &Scene, options: &Options, student: &Image) -> Image {
+/// The reference of `scene` under `options`, at the student image's size, with how sure
+/// it is of each pixel at relative `precision` ([`Tolerance::precision`]).
+pub fn reference(scene: &Scene, options: &Options, student: &Image, precision: f64) -> Reference {
     let options = Options {
         width: student.width,
         height: student.height,
         ..*options
     };
-    render::render(scene, &options, |_| {})
+    let (image, fragility, hits) = render::render_with_margins(scene, &options, precision);
+    Reference {
+        image,
+        fragility,
+        hits,
+    }
 }
 
 /// Compares `student` with `reference`; with the scene (and the options the reference
 /// was rendered with) the differences are grouped by object, and diagnosed if asked.
 pub fn report(
-    reference: &Image,
+    rendered: &Reference,
     student: &Image,
     scene: Option<(&Scene, &Options)>,
     settings: &Settings,
 ) -> Result<Report, SizeMismatch> {
+    let reference = &rendered.image;
     same_size(reference, student)?;
     let levels = settings.tolerance.levels;
     let (width, height) = (reference.width, reference.height);
@@ -243,35 +303,37 @@ pub fn report(
         .map(|(&a, &b)| pixel_difference(a, b))
         .collect();
     let beyond = |i: usize| differences[i] > levels;
+    let excused = |i: usize| {
+        let (a, b) = (reference.pixels[i], student.pixels[i]);
+        rendered.fragility(i).excuses(a, b, levels)
+    };
     let differing_pixels = (0..pixels).filter(|&i| beyond(i)).count();
+    let differing_fragile_pixels = (0..pixels).filter(|&i| beyond(i) && excused(i)).count();
+    let fragile_pixels = rendered.fragility.iter().filter(|f| f.any()).count();
     let differing_fraction = differing_pixels as f64 / pixels.max(1) as f64;
     let channel_sum: u64 = (reference.pixels.iter().zip(&student.pixels))
         .flat_map(|(a, b)| (0..3).map(|c| u64::from(a[c].abs_diff(b[c]))))
         .sum();
-    let verdict = match differing_fraction <= settings.tolerance.allow {
+    // Only the pixels the reference is sure of count against the image.
+    let counted = differing_pixels - differing_fragile_pixels;
+    let verdict = match counted as f64 <= settings.tolerance.allow * pixels as f64 {
         true => Verdict::Match,
         false => Verdict::Differ,
     };
     let groups = match scene {
-        Some((scene, options)) if differing_pixels > 0 => {
-            let options = Options {
-                width,
-                height,
-                ..*options
-            };
-            let hits = render::first_hits(scene, &options);
-            group(scene, &hits, (0..pixels).filter(|&i| beyond(i)))
+        Some((scene, _)) if differing_pixels > 0 && rendered.hits.len() == pixels => {
+            group(scene, &rendered.hits, (0..pixels).filter(|&i| beyond(i)))
         }
         _ => Vec::new(),
     };
     let mut order: Vec<usize> = (0..pixels).filter(|&i| beyond(i)).collect();
-    // Largest difference first, then the largest sum over the channels, then the first
-    // in the image: the same order on every run.
+    // The differences that count first, then the largest difference, then the largest
+    // sum over the channels, then the first in the image: the same order on every run.
     let sum = |i: usize| -> u16 {
         let (a, b) = (reference.pixels[i], student.pixels[i]);
         (0..3).map(|c| u16::from(a[c].abs_diff(b[c]))).sum()
     };
-    order.sort_by_key(|&i| (std::cmp::Reverse((differences[i], sum(i))), i));
+    order.sort_by_key(|&i| (excused(i), std::cmp::Reverse((differences[i], sum(i))), i));
     let worst = (order.iter().take(settings.worst))
         .map(|&i| Worst {
             x: i % width,
@@ -279,6 +341,7 @@ pub fn report(
             reference: reference.pixels[i],
             student: student.pixels[i],
             difference: differences[i],
+            fragile: excused(i),
             trace: None,
         })
         .collect();
@@ -300,7 +363,10 @@ pub fn report(
         pixels,
         tolerance: levels,
         allow: settings.tolerance.allow,
+        precision: settings.tolerance.precision,
         differing_pixels,
+        fragile_pixels,
+        differing_fragile_pixels,
         differing_fraction,
         max_channel_difference: differences.iter().copied().max().unwrap_or(0),
         mean_absolute_error: channel_sum as f64 / (3 * pixels).max(1) as f64,
@@ -350,14 +416,23 @@ pub mod key {
     pub const MEDIUM: [u8; 3] = [255, 210, 0];
     /// 32 levels or more: another colour, or another object.
     pub const LARGE: [u8; 3] = [255, 30, 30];
+    /// Any difference on a fragile pixel, excused: a correct tracer may get it.
+    pub const FRAGILE: [u8; 3] = [200, 0, 255];
 }
 
 /// The diff image: the reference dimmed to grey where the pixels are within `levels`,
-/// and the differing pixels coloured by the size of their difference ([`key`]).
-pub fn diff_image(reference: &Image, student: &Image, levels: u8) -> Result<Image, SizeMismatch> {
+/// differing pixels the reference is sure of coloured by the size of their difference,
+/// and the excused ones on fragile pixels in their own colour ([`key`]).
+pub fn diff_image(
+    rendered: &Reference,
+    student: &Image,
+    levels: u8,
+) -> Result<Image, SizeMismatch> {
+    let reference = &rendered.image;
     same_size(reference, student)?;
-    let pixels = (reference.pixels.iter().zip(&student.pixels))
-        .map(|(&a, &b)| match pixel_difference(a, b) {
+    let pixels = (reference.pixels.iter().zip(&student.pixels).enumerate())
+        .map(|(i, (&a, &b))| match pixel_difference(a, b) {
+            d if d > levels && rendered.fragility(i).excuses(a, b, levels) => key::FRAGILE,
             d if d <= levels => {
                 // Rec. 601 luma, dimmed into 24..=100 so that every colour of the key
                 // stands out against it.

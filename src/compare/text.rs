@@ -125,12 +125,32 @@ pub fn text(report: &Report, reference: &str, student: &str, choices: Option<&Ch
         thousands(report.pixels)
     ));
     line(format!(
-        "beyond the tolerance of {} levels: {} pixels ({}); {} may be",
+        "beyond the tolerance of {} levels: {} pixels ({})",
         report.tolerance,
         thousands(report.differing_pixels),
         percent_of(report.differing_fraction),
-        percent_of(report.allow)
     ));
+    if choices.is_some() {
+        // With a scene: how many of them a correct tracer may give.
+        let counted = report.differing_pixels - report.differing_fragile_pixels;
+        line(format!(
+            "  of them on fragile pixels (excused): {}; counted: {} ({} may be)",
+            thousands(report.differing_fragile_pixels),
+            thousands(counted),
+            percent_of(report.allow)
+        ));
+        line(format!(
+            "fragile pixels of the reference at precision {:.3e}: {} ({})",
+            report.precision,
+            thousands(report.fragile_pixels),
+            percent_of(report.fragile_pixels as f64 / report.pixels.max(1) as f64)
+        ));
+    } else {
+        line(format!(
+            "  {} may be (two images: no pixel is known to be fragile)",
+            percent_of(report.allow)
+        ));
+    }
     line(format!(
         "largest channel difference: {}",
         report.max_channel_difference
@@ -174,8 +194,9 @@ pub fn text(report: &Report, reference: &str, student: &str, choices: Option<&Ch
             let [sr, sg, sb] = worst.student;
             let at = format!("({}, {})", worst.x, worst.y);
             let mut text = format!(
-                "  {at:<12} {r:3} {g:3} {b:3} -> {sr:3} {sg:3} {sb:3}  (by {:3})",
-                worst.difference
+                "  {at:<12} {r:3} {g:3} {b:3} -> {sr:3} {sg:3} {sb:3}  (by {:3}{})",
+                worst.difference,
+                if worst.fragile { ", fragile" } else { "" }
             );
             if let Some(trace) = &worst.trace {
                 text += &format!("  {trace}");

@@ -240,13 +240,15 @@ impl Bvh {
     /// The closest hit (smallest t, ties to the lower index) among the objects for which
     /// `test` gives a distance that `counts` accepts; `test` skips the caller's skipped
     /// object, and `counts` (t > 0, inside the object's box) is asked only of a hit
-    /// that would win.
+    /// that would win. Boxes entered up to `slack` times the best t so far are visited
+    /// (1: only those that can still win).
     #[inline]
     pub(crate) fn closest(
         &self,
         ray: &Ray,
-        test: impl Fn(usize) -> Option<f64>,
+        mut test: impl FnMut(usize) -> Option<f64>,
         counts: impl Fn(usize, f64) -> bool,
+        slack: f64,
     ) -> Option<(usize, f64)> {
         let mut best: Option<(usize, f64)> = None;
         self.walk(ray, |objects| {
@@ -259,14 +261,15 @@ impl Bvh {
                     best = Some((index, t));
                 }
             }
-            Some(best.map_or(f64::INFINITY, |(_, t)| t))
+            Some(best.map_or(f64::INFINITY, |(_, t)| t * slack))
         });
         best
     }
 
-    /// Whether `test` finds any object hit before `limit`.
+    /// Whether `test` finds any object among those whose boxes the ray enters before
+    /// `limit`.
     #[inline]
-    pub(crate) fn any(&self, ray: &Ray, limit: f64, test: impl Fn(usize) -> bool) -> bool {
+    pub(crate) fn any(&self, ray: &Ray, limit: f64, mut test: impl FnMut(usize) -> bool) -> bool {
         self.walk(ray, |objects| {
             (!objects.iter().any(|&index| test(index as usize))).then_some(limit)
         })

@@ -11,6 +11,7 @@
 mod bvh;
 mod choices;
 mod lists;
+mod margins;
 mod objects;
 mod record;
 mod shading;
@@ -22,6 +23,10 @@ pub mod variant;
 
 pub use choices::{Choices, by_name, size_problem};
 pub use record::{Event, LightStep, Skip, Stats};
+
+/// The largest precision `compare` takes: how far past its answer a query goes on
+/// testing objects while the margins are recorded.
+pub const MAX_PRECISION: f64 = record::MARGIN_REACH;
 pub use shading::PatternNote;
 pub use stage::{Show, Stage};
 pub use trace::{CourseIds, Trace, trace};
@@ -365,17 +370,119 @@ impl FirstHit {
     }
 }
 
-/// The object each camera ray hits first (spec §4.6), in output order.
-pub fn first_hits(scene: &Scene, options: &Options) -> Vec<FirstHit> {
+/// How sure the reference is of one pixel at a precision (docs/compare.md): whether a
+/// decision that chose what it shows (an object, a shadow, a tile) came within that
+/// relative margin of going the other way, and which channels lie that close to a byte's
+/// step ([`render_with_margins`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Fragility(u8);
+
+impl Fragility {
+    const STRUCTURAL: u8 = 1 << 3;
+
+    /// Whether a tracer correct to the precision may show another colour here.
+    pub fn structural(self) -> bool {
+        self.0 & Fragility::STRUCTURAL != 0
+    }
+
+    /// Whether channel `c` (0 red, 1 green, 2 blue) may come out a level off.
+    pub fn byte(self, c: usize) -> bool {
+        self.0 & (1 << c) != 0
+    }
+
+    /// Whether the pixel is fragile in any way.
+    pub fn any(self) -> bool {
+        self.0 != 0
+    }
+
+    /// Whether a student's pixel `student` against the reference's `reference` is one a
+    /// correct tracer may give here: anything where a decision was fragile, otherwise a
+    /// level off on fragile bytes only (`levels`: the difference already tolerated).
+    pub fn excuses(self, reference: [u8; 3], student: [u8; 3], levels: u8) -> bool {
+        if self.structural() {
+            return true;
+        }
+        (0..3).all(|c| {
+            let d = reference[c].abs_diff(student[c]);
+            d <= levels || (d <= 1 && self.byte(c))
+        })
+    }
+
+    /// The pixel of a colour whose decisions' least margin is `least` and whose channels'
+    /// byte margins are `bytes`, at precision `precision`.
+    fn of(least: f64, bytes: [f64; 3], precision: f64) -> Fragility {
+        let mut bits = u8::from(least < precision) * Fragility::STRUCTURAL;
+        for (c, margin) in bytes.into_iter().enumerate() {
+            bits |= u8::from(margin < precision) << c;
+        }
+        Fragility(bits)
+    }
+}
+
+/// How many roundings of the arithmetic a pixel's colour carries, at most, for a
+/// scene of a few lights: the byte's margin is measured against that many.
+const COLOUR_ROUNDINGS: f64 = 16.0;
+
+/// The reference image with, per pixel, how sure it is at `precision` and the object its
+/// camera ray hits first: what `compare` needs, in one render with a recorder of margins
+/// (src/render/margins.rs). The image is the plain render's, byte for byte.
+pub fn render_with_margins(
+    scene: &Scene,
+    options: &Options,
+    precision: f64,
+) -> (Image, Vec<Fragility>, Vec<FirstHit>) {
     let setup = Setup::new(scene, options);
-    let tracer = setup.tracer(options);
-    let first = |x: usize, y: usize| {
-        let ray = setup.camera.ray(x, y);
-        let from = From::Eye(tracer.objects.tile(x, y));
-        let hit = ray.and_then(|ray| tracer.objects.closest_any(&ray, from));
-        FirstHit::of(hit.map(|hit| hit.object))
+    // As in `render`: the rules as written are constants to the tracer.
+    let pixels = match setup.rules.as_written() {
+        true => margins_of(
+            &setup,
+            setup.tracer_with(AsWritten, options),
+            options,
+            precision,
+        ),
+        false => margins_of(&setup, setup.tracer(options), options, precision),
     };
-    each_pixel(&setup, options, first, &mut |_| {})
+    let image = Image {
+        width: options.width,
+        height: options.height,
+        pixels: pixels.iter().map(|p| p.0).collect(),
+    };
+    let fragility = pixels.iter().map(|p| p.1).collect();
+    let hits = pixels.iter().map(|p| p.2).collect();
+    (image, fragility, hits)
+}
+
+/// Every pixel's bytes, fragility at `precision` and first hit, in output order.
+fn margins_of<B: Rulebook>(
+    setup: &Setup,
+    tracer: Tracer<B>,
+    options: &Options,
+    precision: f64,
+) -> Vec<([u8; 3], Fragility, FirstHit)> {
+    let sizes = margins::Sizes::new(&setup.scene, options.max_dist, tracer.screen());
+    let background = setup.rules.bytes(DVec3::ZERO);
+    with_kernel!(options.kernel, K => {
+        let per_pixel = |x: usize, y: usize| -> ([u8; 3], Fragility, FirstHit) {
+            let tile = tracer.objects.tile(x, y);
+            if tile.is_some_and(|tile| tile.objects.is_empty()) {
+                return (background, Fragility::default(), FirstHit::default());
+            }
+            let mut rec = margins::Margins::new(&sizes);
+            let colour = match setup.camera.ray(x, y) {
+                Some(ray) => tracer.pixel::<K>(ray, tile, &mut rec),
+                None => DVec3::ZERO,
+            };
+            // The colour is some sixteen roundings from the hit point: ambient plus each
+            // light's diffuse × emissivity × cos θ / dist, over the path, times the
+            // mirrors.
+            let error = COLOUR_ROUNDINGS * rec.kappa;
+            let bytes = colour.to_array().map(|c| setup.rules.bytes.margin(c) / error);
+            let fragility = Fragility::of(rec.least, bytes, precision);
+            let first = FirstHit::of(rec.first.flatten());
+            (setup.rules.bytes(colour), fragility, first)
+        };
+        each_pixel(setup, options, per_pixel, &mut |_| {})
+    })
 }
 
 /// Where a pixel's bytes change as MAX_DIST grows: once D reaches `start` (where a

@@ -13,17 +13,17 @@
 //! shadow-epsilon, every hit within ε of the base is), and the variants hidden and
 //! no-shadow take one object out of one kind of test.
 //!
-//! The kernel is chosen at run time, once per ray: each query is one `match` to a loop
-//! compiled for that kernel, so that no object test pays for the choice.
+//! The kernel is each query's type parameter, chosen by the caller once per render
+//! (`with_kernel!`), so that no object test pays for the choice.
 
 use super::bvh::{Boxes, Bvh, beats};
-use super::record::{Event, LightStep, Recorder, Skip};
+use super::record::{Event, LightStep, MARGIN_REACH, Recorder, Skip};
 use super::tiles::{Tile, Tiles};
 use super::variant::Rulebook;
 use super::{Camera, Options};
 use crate::scene::{Object, Scene};
-use crate::shapes::kernel::{Kernel, KernelChoice, with_kernel};
-use crate::shapes::{HitNote, Ray};
+use crate::shapes::kernel::Kernel;
+use crate::shapes::{HitNote, Notes, Ray, clearly_no_root, discriminant_note};
 
 /// The closest hit of a ray: the object's index among the scene's objects, and t.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -48,7 +48,6 @@ pub(crate) enum From<'t> {
 /// The scene's objects, with what answers the two questions quickly.
 pub(crate) struct Objects<'a, B> {
     scene: &'a Scene,
-    kernel: KernelChoice,
     /// Every object's box: a hit counts only inside its object's box.
     boxes: Boxes,
     /// The hierarchy over the bounded objects, when there are enough of them.
@@ -76,7 +75,6 @@ impl<'a, B: Rulebook> Objects<'a, B> {
             .and_then(|camera| Tiles::new(scene, &boxes, camera.viewpoint, &camera.xs, &camera.ys));
         Objects {
             scene,
-            kernel: options.kernel,
             boxes,
             bvh,
             tiles,
@@ -109,12 +107,6 @@ impl<'a, B: Rulebook> Objects<'a, B> {
         }
     }
 
-    /// The closest object hit along `ray` with t > 0, skipping the one it leaves, by the
-    /// objects' own kernel.
-    pub(crate) fn closest_any(&self, ray: &Ray, from: From) -> Option<Hit> {
-        with_kernel!(self.kernel, K => self.closest::<K>(ray, from, &mut ()))
-    }
-
     /// Whether object `index` is out of camera and mirror rays' tests (hidden).
     #[inline(always)]
     fn hidden(&self, index: usize) -> bool {
@@ -130,105 +122,130 @@ impl<'a, B: Rulebook> Objects<'a, B> {
     /// The closest object hit along `ray` with t > 0, skipping the one it leaves; ties go
     /// to the earlier object (spec §4.6). `K` is the render's kernel.
     #[inline(always)]
-    pub(crate) fn closest<K: Kernel>(
+    pub(crate) fn closest<K: Kernel, R: Recorder>(
         &self,
         ray: &Ray,
         from: From,
-        rec: &mut impl Recorder,
+        rec: &mut R,
     ) -> Option<Hit> {
         let (skip, least) = self.leaving(from);
         let objects = &self.scene.objects;
         let out = |index: usize| Some(index) == skip || self.hidden(index);
         let counts = |index: usize, t: f64| t > least && self.boxes.admits(index, ray, t);
-        let test = |index: usize| match out(index) {
+        let test = |index: usize, rec: &mut R| match out(index) {
             true => None,
-            false => objects[index].shape.hit_by::<K>(ray, &mut ()),
+            false => test_and_record::<K, R>(index, &objects[index], ray, rec),
         };
+        // A recorder of margins is told of the objects that come near the best hit too.
+        let slack = reach::<R>();
         let mut best: Option<(usize, f64)> = None;
         let tile = match from {
             From::Eye(tile) => tile,
             From::Surface(_) => None,
         };
-        if let Some(tile) = tile.filter(|_| !every_object(rec)) {
+        if let Some(tile) = tile.filter(|_| !R::EVERY_OBJECT) {
             // Near to far: past the best hit so far, nothing can win or tie.
             for &index in tile.objects {
                 let index = index as usize;
-                if best.is_some_and(|(_, t)| tile.nearest[index] > t) {
+                if best.is_some_and(|(_, t)| tile.nearest[index] > t * slack) {
                     break;
                 }
-                if let Some(t) = test(index)
+                if let Some(t) = test(index, rec)
                     && beats(best, index, t)
                     && counts(index, t)
                 {
                     best = Some((index, t));
                 }
             }
-        } else if let Some(bvh) = self.bvh.as_ref().filter(|_| !every_object(rec)) {
-            best = bvh.closest(ray, test, counts);
+        } else if let Some(bvh) = self.bvh.as_ref().filter(|_| !R::EVERY_OBJECT) {
+            best = bvh.closest(ray, |index| test(index, rec), counts, slack);
         } else {
-            // The course's loop: every object in file order.
-            for (index, object) in objects.iter().enumerate() {
-                if out(index) {
-                    let reason = skipped(Some(index) == skip);
-                    rec.record(|| Event::Skipped {
-                        object: index,
-                        reason,
-                    });
-                    continue;
-                }
-                if let Some(t) = test_and_record::<K>(index, object, ray, rec)
+            in_file_order(objects.len(), skip, out, rec, |index, rec| {
+                if let Some(t) = test(index, rec)
                     && beats(best, index, t)
                     && counts(index, t)
                 {
                     best = Some((index, t));
                 }
-            }
+                false
+            });
         }
         best.map(|(object, t)| Hit { object, t })
     }
 
     /// Whether an object lies on `ray` (leaving object `from`) closer than `dist`, blocking
-    /// the light (spec §4.3). A trace is told the first such object in file order. `K` is
-    /// the objects' kernel.
+    /// the light (spec §4.3); the recorder is told which, the first in file order for a
+    /// trace. `K` is the render's kernel.
     #[inline(always)]
-    pub(crate) fn blocked<K: Kernel>(
+    pub(crate) fn blocked<K: Kernel, R: Recorder>(
         &self,
         ray: &Ray,
         from: usize,
         dist: f64,
-        rec: &mut impl Recorder,
+        rec: &mut R,
     ) -> bool {
         let (skip, least) = self.leaving(From::Surface(from));
         let objects = &self.scene.objects;
         let out = |index: usize| Some(index) == skip || self.casts_no_shadow(index);
         let blocks =
             |index: usize, t: f64| t > least && t < dist && self.boxes.admits(index, ray, t);
-        if let Some(bvh) = self.bvh.as_ref().filter(|_| !every_object(rec)) {
-            return bvh.any(ray, dist, |index| {
-                !out(index)
-                    && (objects[index].shape.hit_by::<K>(ray, &mut ()))
-                        .is_some_and(|t| blocks(index, t))
-            });
-        }
-        for (index, object) in objects.iter().enumerate() {
-            if out(index) {
-                let reason = skipped(Some(index) == skip);
-                rec.record(|| Event::Skipped {
-                    object: index,
-                    reason,
-                });
-                continue;
-            }
-            if let Some(t) = test_and_record::<K>(index, object, ray, rec)
+        // A recorder of margins hears of blockers until one is sure: the shadow is as
+        // sure as the surest of them.
+        let every_blocker = reach::<R>() > 1.0;
+        let mut blocker = None;
+        let mut test = |index: usize, rec: &mut R| {
+            if let Some(t) = test_and_record::<K, R>(index, &objects[index], ray, rec)
                 && blocks(index, t)
+                && blocker.is_none()
             {
-                let blocker = Some((index, t));
-                rec.record(|| Event::Light(LightStep::Blocked { blocker }));
-                return true;
+                blocker = Some((index, t));
             }
+            blocker.is_some() && (!every_blocker || rec.settled())
+        };
+        if let Some(bvh) = self.bvh.as_ref().filter(|_| !R::EVERY_OBJECT) {
+            let limit = dist * reach::<R>();
+            bvh.any(ray, limit, |index| !out(index) && test(index, rec));
+        } else {
+            in_file_order(objects.len(), skip, out, rec, test);
         }
-        rec.record(|| Event::Light(LightStep::Blocked { blocker: None }));
-        false
+        rec.record(|| Event::Light(LightStep::Blocked { blocker }));
+        blocker.is_some()
+    }
+}
+
+/// The course's loop: every object in file order, those `out` of the test told to `rec`
+/// as skipped (`skip` is the one the ray leaves), until `each(index, rec)` says to stop.
+#[inline(always)]
+fn in_file_order<R: Recorder>(
+    count: usize,
+    skip: Option<usize>,
+    out: impl Fn(usize) -> bool,
+    rec: &mut R,
+    mut each: impl FnMut(usize, &mut R) -> bool,
+) {
+    for index in 0..count {
+        if out(index) {
+            let reason = skipped(Some(index) == skip);
+            rec.record(|| Event::Skipped {
+                object: index,
+                reason,
+            });
+            continue;
+        }
+        if each(index, rec) {
+            break;
+        }
+    }
+}
+
+/// How far past the best hit (or the light) a query goes on testing, as a factor: 1 but
+/// for a recorder of margins, which must hear of every object that comes within
+/// [`MARGIN_REACH`] of the decision.
+#[inline(always)]
+fn reach<R: Recorder>() -> f64 {
+    match R::NOTES && !R::EVERY_OBJECT {
+        true => 1.0 + MARGIN_REACH,
+        false => 1.0,
     }
 }
 
@@ -240,30 +257,63 @@ fn skipped(leaves: bool) -> Skip {
     }
 }
 
-/// `object`'s t along `ray`, told to `rec` with the shape's reasons when it records every
-/// object's test.
+/// `object`'s t along `ray`, told to `rec` with the shape's reasons when it wants them.
 #[inline(always)]
-fn test_and_record<K: Kernel>(
+fn test_and_record<K: Kernel, R: Recorder>(
     index: usize,
     object: &Object,
     ray: &Ray,
-    rec: &mut impl Recorder,
+    rec: &mut R,
 ) -> Option<f64> {
-    if !every_object(rec) {
+    if !R::NOTES {
         return object.shape.hit_by::<K>(ray, &mut ());
     }
-    let mut notes: Vec<HitNote> = Vec::new();
+    let mut notes = Few::default();
+    // A recorder of margins is told how close the ray came to touching a quadric. Where
+    // it clearly misses and the kernel's quick test agrees, the recorder (whose margins
+    // reach no further) is not told, and the kernel's notes are not taken.
+    if reach::<R>() > 1.0
+        && let Some((a, b, c)) = object.shape.quadratic(ray)
+    {
+        if clearly_no_root(a, b, c, MARGIN_REACH)
+            && object.shape.hit_by::<K>(ray, &mut ()).is_none()
+        {
+            return None;
+        }
+        notes.note(discriminant_note(a, b, c));
+    }
     let t = object.shape.hit_by::<K>(ray, &mut notes);
-    rec.record(|| Event::Tested {
-        object: index,
-        t,
-        notes,
-    });
+    rec.tested(index, t, notes.as_slice());
     t
 }
 
-/// `R::EVERY_OBJECT` of a recorder given by reference.
-#[inline(always)]
-fn every_object<R: Recorder>(_: &R) -> bool {
-    R::EVERY_OBJECT
+/// The few decisions of one test (at most four: the discriminant and two roots, or a
+/// plane's t and its rectangle), kept without allocating.
+struct Few {
+    notes: [HitNote; 6],
+    len: usize,
+}
+
+impl Default for Few {
+    fn default() -> Few {
+        Few {
+            notes: [HitNote::NoRealRoot; 6],
+            len: 0,
+        }
+    }
+}
+
+impl Few {
+    fn as_slice(&self) -> &[HitNote] {
+        &self.notes[..self.len]
+    }
+}
+
+impl Notes for Few {
+    fn note(&mut self, note: HitNote) {
+        if self.len < self.notes.len() {
+            self.notes[self.len] = note;
+            self.len += 1;
+        }
+    }
 }

@@ -21,9 +21,36 @@ pub(crate) trait Recorder {
     /// hierarchy (the same answers).
     const EVERY_OBJECT: bool = Self::ON;
 
+    /// Whether the shapes' decisions are wanted for every object tested
+    /// ([`Recorder::tested`]), also where the tiles and the hierarchy choose which: the
+    /// margins of `compare`'s fragile pixels. The queries then go on testing objects
+    /// within [`MARGIN_REACH`] of their answer.
+    const NOTES: bool = Self::EVERY_OBJECT;
+
     /// Takes one event; `event` is called only by a recorder that keeps it.
     fn record(&mut self, event: impl FnOnce() -> Event);
+
+    /// Whether the shadow query under way is decided for this recorder: a recorder of
+    /// margins hears of blockers until one is sure.
+    fn settled(&self) -> bool {
+        true
+    }
+
+    /// Takes one object's test: its t and the shape's decisions (wanted when
+    /// [`Recorder::NOTES`]).
+    fn tested(&mut self, object: usize, t: Option<f64>, notes: &[HitNote]) {
+        self.record(|| Event::Tested {
+            object,
+            t,
+            notes: notes.to_vec(),
+        });
+    }
 }
+
+/// How far beyond its answer a query tests objects for a recorder of margins, as a share
+/// of the distance: the largest precision `compare` takes (`--precision`), so that an
+/// object whose hit falls that close behind the best one, or behind the light, is seen.
+pub(crate) const MARGIN_REACH: f64 = 1e-2;
 
 impl Recorder for () {
     const ON: bool = false;

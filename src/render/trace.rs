@@ -96,6 +96,7 @@ fn verdict_words(verdict: Verdict) -> &'static str {
 /// Why a test came to what it did, in words.
 fn reasons(notes: &[HitNote]) -> String {
     let reason = |note: &HitNote| match *note {
+        HitNote::Discriminant { .. } => String::new(),
         HitNote::NoRealRoot => "no real root".to_string(),
         HitNote::Parallel => "parallel to the plane (N·D = 0)".to_string(),
         HitNote::Nearer { t: Some(t) } => format!("nearer root t = {}", number(t)),
@@ -120,7 +121,11 @@ fn reasons(notes: &[HitNote]) -> String {
             format!("q = ({}, {}): {what}", number(q.x), number(q.y))
         }
     };
-    notes.iter().map(reason).collect::<Vec<_>>().join("; ")
+    // How close a ray came to touching is for `compare`, not for the trace.
+    let told = notes
+        .iter()
+        .filter(|note| !matches!(note, HitNote::Discriminant { .. }));
+    told.map(reason).collect::<Vec<_>>().join("; ")
 }
 
 /// What chose the material, in words.

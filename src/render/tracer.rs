@@ -52,6 +52,11 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
         }
     }
 
+    /// What texture tile mode needs of the projection.
+    pub(crate) fn screen(&self) -> Screen {
+        self.screen
+    }
+
     /// The colour of a camera ray (with its tile's list, [`Objects::tile`]): the stage's
     /// image, or the diagnostic image of `--show`. `K` is the render's kernel, chosen by
     /// the caller once per render (`with_kernel!`) so that the tracer's queries run in
@@ -94,7 +99,7 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
                 total_dist,
             });
             // 2. The closest hit, skipping the object the ray leaves; nothing: black.
-            let hit = self.objects.closest::<K>(&ray, from, rec);
+            let hit = self.objects.closest::<K, _>(&ray, from, rec);
             rec.record(|| Event::Closest {
                 hit: hit.map(|h| (h.object, h.t)),
             });
@@ -233,7 +238,7 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
                 dir: u,
             };
             rec.record(|| Event::Light(LightStep::ShadowRay { ray: shadow }));
-            if self.objects.blocked::<K>(&shadow, object, dist, rec) {
+            if self.objects.blocked::<K, _>(&shadow, object, dist, rec) {
                 return DVec3::ZERO;
             }
         }
@@ -270,7 +275,7 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
             ray,
             total_dist: 0.0,
         });
-        let hit = self.objects.closest::<K>(&ray, from, rec);
+        let hit = self.objects.closest::<K, _>(&ray, from, rec);
         rec.record(|| Event::Closest {
             hit: hit.map(|h| (h.object, h.t)),
         });

@@ -641,6 +641,34 @@ impl Bytes {
             Bytes::Scale256 => (channel.clamp(0.0, 1.0) * 256.0).min(255.0) as u8,
         }
     }
+
+    /// How far `channel` lies from the nearest value where its byte changes, relative to
+    /// the channel: |v - k| / v with v the scaled channel (255 c, or 256 c) and k the
+    /// nearest step (an integer for truncation, an integer plus ½ for round-bytes). A
+    /// channel of exactly 0 (nothing lit it, nothing reflected into it) or NaN is 0 in
+    /// any arithmetic: infinite. Above the clamp the step is the clamp's own.
+    pub(crate) fn margin(self, channel: f64) -> f64 {
+        if channel.is_nan() || channel <= 0.0 {
+            return f64::INFINITY;
+        }
+        let (scaled, offset, top) = match self {
+            Bytes::Truncate => (channel * 255.0, 0.0, 255.0),
+            Bytes::Round => (channel * 255.0, 0.5, 254.5),
+            Bytes::Scale256 => (channel * 256.0, 0.0, 255.0),
+        };
+        if scaled >= top {
+            // 255 from the last step up.
+            return (scaled - top) / scaled;
+        }
+        let x = scaled - offset;
+        if x < 0.0 {
+            // 0 up to the first step.
+            return -x / scaled;
+        }
+        // The steps on either side (a cast truncates, cheaper than a rounding call).
+        let below = (x as i64) as f64;
+        (x - below).min(below + 1.0 - x) / scaled
+    }
 }
 
 /// What step 6 of spec §4.2 divides by.
@@ -1034,6 +1062,25 @@ mod tests {
         for (index, row) in VARIANTS.iter().enumerate() {
             assert_eq!(row.kind as usize, index, "{}", row.id);
         }
+    }
+
+    #[test]
+    fn a_byte_s_margin_is_its_distance_to_the_next_step_over_the_channel() {
+        let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * b.abs();
+        // 255 × 100.25 / 255 = 100.25 (to a rounding): a quarter level above step 100.
+        let margin = Bytes::Truncate.margin(100.25 / 255.0);
+        assert!(close(margin, 0.25 / 100.25), "{margin}");
+        // Round-bytes steps at 100.5: 100.25 is a quarter below it.
+        let margin = Bytes::Round.margin(100.25 / 255.0);
+        assert!(close(margin, 0.25 / 100.25), "{margin}");
+        // 256 × 0.5 = 128 exactly: on the step.
+        assert_eq!(Bytes::Scale256.margin(0.5), 0.0);
+        // Above the clamp, the step is at 255: 2 × 255 = 510 is 255 beyond it.
+        assert_eq!(Bytes::Truncate.margin(2.0), 0.5);
+        // Exactly 0 is 0 in any arithmetic.
+        assert_eq!(Bytes::Truncate.margin(0.0), f64::INFINITY);
+        // Round-bytes below its first step, 0.5: 0.25 is a quarter away from it.
+        assert!(close(Bytes::Round.margin(0.25 / 255.0), 0.25 / 0.25));
     }
 
     #[test]

@@ -178,6 +178,13 @@ impl AxisQuadric {
         Ok((frame, Size { radius, height }))
     }
 
+    /// a, b, c along `ray` from its base, as the notes' formula computes them:
+    /// B' = rotmat (B - C), D' = rotmat D, the coefficients of note 003 in f64.
+    pub(crate) fn quadratic(&self, ray: &crate::shapes::Ray) -> (f64, f64, f64) {
+        let (base, dir) = self.frame.to_local(ray);
+        self.coefficients(base, dir)
+    }
+
     /// f at a local point, in f64.
     #[inline]
     pub fn value(&self, local: DVec3) -> f64 {
@@ -261,6 +268,40 @@ impl AxisQuadric {
             max = max.max(world);
         }
         Some((min, max))
+    }
+}
+
+/// Whether a t² + b t + c = 0 has no real root by a relative margin of at least `reach`:
+/// b² - 4ac < 0 with |b² - 4ac| >= reach (b² + 4|ac|).
+pub(crate) fn clearly_no_root(a: f64, b: f64, c: f64, reach: f64) -> bool {
+    let (square, product) = (b * b, 4.0 * a * c);
+    let size = square + product.abs();
+    size.is_finite() && square < product && product - square >= reach * size
+}
+
+/// [`HitNote::Discriminant`] of a t² + b t + c = 0.
+pub(crate) fn discriminant_note(a: f64, b: f64, c: f64) -> HitNote {
+    let (square, product) = (b * b, 4.0 * a * c);
+    let size = square + product.abs();
+    let relative = match size > 0.0 {
+        true => (square - product).abs() / size,
+        false => 1.0,
+    };
+    let vertex = match a != 0.0 {
+        true => -b / (2.0 * a),
+        false => -c / b,
+    };
+    // The notes' root (-b ± √Δ) / 2a with every term rounded once: the numerator's terms,
+    // and Δ's through the square root, whose slope is 1 / 2√Δ.
+    let root = (square - product).abs().sqrt();
+    let spread = match a != 0.0 {
+        true => (b.abs() + root + size / (2.0 * root)) / (2.0 * a).abs(),
+        false => 2.0 * vertex.abs(),
+    };
+    HitNote::Discriminant {
+        relative,
+        vertex,
+        spread,
     }
 }
 

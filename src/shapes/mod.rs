@@ -10,6 +10,7 @@
 
 mod axis_frame;
 mod axis_quadric;
+pub(crate) use axis_quadric::{clearly_no_root, discriminant_note};
 mod cone;
 mod cylinder;
 mod finite_plane;
@@ -151,6 +152,21 @@ pub(crate) fn unit_or_zero_error(
 /// [`Plane`], [`FinitePlane`], [`Quadric`]) to a [`Notes`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum HitNote {
+    /// How close the quadratic of the sphere, a quadric 21-24 or a `QUADRIC` is to having
+    /// a double root, as the notes' formula sees it from the ray's base: the discriminant
+    /// b² - 4ac over the size of its terms, b² + 4|ac| (0 for a ray tangent to the
+    /// surface, 1 far from it), and where the roots would meet, t = -b / 2a. For
+    /// `compare`'s fragile pixels (docs/compare.md); the trace does not print it.
+    Discriminant {
+        /// |b² - 4ac| / (b² + 4|ac|).
+        relative: f64,
+        /// -b / 2a (-c / b for the linear equation).
+        vertex: f64,
+        /// How far a root moves when every term of the notes' formula is off by one part
+        /// in 1 (to be multiplied by the arithmetic's precision): (|b| + √|Δ| + (b² +
+        /// 4|ac|) / 2√|Δ|) / |2a|; infinite at a double root.
+        spread: f64,
+    },
     /// The quadratic has no real root (for the sphere: a discriminant not > 0).
     NoRealRoot,
     /// The sphere's nearer root, `None` if it is not a finite number.
@@ -300,6 +316,27 @@ impl Shape {
             Shape::Cone(s) => K::axis_quadric(&s.equation, ray, notes),
             Shape::Hyperboloid(s) => K::axis_quadric(&s.equation, ray, notes),
             Shape::Quadric(s) => K::quadric(s, ray, notes),
+        }
+    }
+
+    /// The quadratic a t² + b t + c along `ray` from its base, as the notes' formula
+    /// computes it, for the sphere, the quadrics 21-24 and `QUADRIC`; `None` for the planes.
+    /// For `compare`'s margins ([`HitNote::Discriminant`]).
+    #[inline(always)]
+    pub(crate) fn quadratic(&self, ray: &Ray) -> Option<(f64, f64, f64)> {
+        match self {
+            // The sphere's frame turns nothing: a = D·D, b = 2 D·(B - C), c = |B - C|² - r².
+            Shape::Sphere(s) => {
+                let w = ray.base - s.centre;
+                let (d, r2) = (ray.dir, s.radius_sq);
+                Some((d.dot(d), 2.0 * d.dot(w), w.dot(w) - r2))
+            }
+            Shape::Paraboloid(s) => Some(s.equation.quadratic(ray)),
+            Shape::Cylinder(s) => Some(s.equation.quadratic(ray)),
+            Shape::Cone(s) => Some(s.equation.quadratic(ray)),
+            Shape::Hyperboloid(s) => Some(s.equation.quadratic(ray)),
+            Shape::Quadric(s) => Some(s.quadratic(ray)),
+            Shape::Plane(_) | Shape::FinitePlane(_) | Shape::TiledPlane(_) => None,
         }
     }
 

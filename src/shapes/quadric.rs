@@ -163,6 +163,12 @@ impl Quadric {
         (d.dot(self.q * d), 2.0 * d.dot(qp), p.dot(qp))
     }
 
+    /// a, b, c along `ray` from its base, as the notes' formula computes them: note 004's
+    /// in f64.
+    pub(crate) fn quadratic(&self, ray: &super::Ray) -> (f64, f64, f64) {
+        self.coefficients(ray.base, ray.dir)
+    }
+
     /// Note 004's choice among the two real roots, ascending: the smallest in front of
     /// the base (a double root counts: a grazing ray touches). `judge(index, root)` gives
     /// a root's t in the kernel's arithmetic and whether it may count (a kernel may know a

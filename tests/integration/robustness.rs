@@ -31,10 +31,11 @@ fn corpus() -> &'static [String] {
     })
 }
 
-/// Renders `scene` small, as users run it (with the hierarchy) and as the course did
-/// (the linear scan), and checks that both give the same bytes.
+/// Renders `scene` small, as users run it (with the hierarchy), as the course did (the
+/// linear scan) and as `compare` renders its reference (with the margins of its fragile
+/// pixels), and checks that all give the same bytes.
 fn render_small(scene: &legacy_rt::Scene) {
-    use legacy_rt::render::{Options, render};
+    use legacy_rt::render::{Options, render, render_with_margins};
     let accelerated = Options::new(8, 6);
     let linear = Options {
         accelerate: false,
@@ -43,6 +44,10 @@ fn render_small(scene: &legacy_rt::Scene) {
     let image = render(scene, &accelerated, |_| {});
     assert_eq!(image.pixels.len(), 8 * 6);
     assert!(image.pixels == render(scene, &linear, |_| {}).pixels);
+    let precision = legacy_rt::compare::F32;
+    let (reference, fragility, hits) = render_with_margins(scene, &accelerated, precision);
+    assert!(reference.pixels == image.pixels);
+    assert_eq!((fragility.len(), hits.len()), (8 * 6, 8 * 6));
 }
 
 /// Loads `text` and checks what any outcome must satisfy; a scene that loads is dumped

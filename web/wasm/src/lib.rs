@@ -301,11 +301,13 @@ impl Session {
             .map_err(thrown)?;
         let (width, height) = (student.width as u32, student.height as u32);
         let (options, chosen) = self.options(width, height, choices_json)?;
-        let reference = compare::reference(scene, &options, &student);
+        let precision = Tolerance::default().precision;
+        let reference = compare::reference(scene, &options, &student, precision);
         let settings = Settings {
             tolerance: Tolerance {
                 levels,
                 allow: percent / 100.0,
+                precision,
             },
             worst: 10,
             diagnose,

@@ -1,0 +1,456 @@
+//! How sure the reference is of each pixel: the recorder of `compare`'s fragile pixels
+//! (docs/compare.md). While the reference renders, [`Margins`] hears every decision that
+//! shaped a pixel's bytes and keeps the smallest *relative margin*: how far the
+//! decision's quantity lay from the value where it would go the other way, over the size
+//! of the numbers it was computed from. A tracer whose arithmetic is good to a relative
+//! error p decides like the reference wherever every margin exceeds p; where one does
+//! not, a correct tracer may get another colour, and the pixel is *fragile*.
+//!
+//! The decisions and their margins, with S the size of a point's coordinates (the ray's
+//! base |B|∞, plus t, plus the object's anchor: its centre, point or corner):
+//!
+//! | decision (spec) | margin |
+//! |---|---|
+//! | a quadratic has real roots (§5.2, §5.6) | \|b² - 4ac\| / (b² + 4\|ac\|) |
+//! | a root or a plane's t is in front of the base (§4.6) | \|t\| / S |
+//! | a root's local y within the bounds (§5.6) | min(\|y - lo\|, \|y - hi\|) / S |
+//! | the z > 0 rule (§5.1) | \|z\| / S |
+//! | inside the rectangle (§5.3) | min(\|qx\|, \|qx - w\|, \|qy\|, \|qy - h\|) / S |
+//! | which object is closest (§4.6) | (t₂ - t₁) / S for the two nearest |
+//! | a shadow hit before the light (§4.3) | \|t - dist\| / S |
+//! | the spotlight's cone (§4.3) | \|along - cos limit\| |
+//! | MAX_DIST (§4.2) | \|total_dist - MAX_DIST\| / MAX_DIST |
+//! | the tile, the texel (§5.4, §5.8) | the distance to the cell's edge / (S + the offset's size) |
+//! | a stripe (§5.5) | \|f - round f\| / (the terms of f, and its gradient times S) |
+//! | the byte (§4.7) | \|255 c - k\| / 255 c, k the nearest step |
+//!
+//! A decision matters to a query only if it could change its answer: an object's own
+//! decisions count when it wins, or when what it decides lies no further than the winner
+//! (a miss that nearly hit in front of it); a shadow is as sure as its surest blocker,
+//! and an unblocked light as its nearest miss. The queries go on testing objects a little
+//! past their answer for this recorder ([`super::record::MARGIN_REACH`]).
+
+use super::record::{Event, LightStep, MARGIN_REACH, Recorder};
+use super::shading::{PatternNote, Screen};
+use crate::scene::{Pattern, Scene, Shader, TextureMode};
+use crate::shapes::{HitNote, Ray, Shape};
+use glam::DVec3;
+
+/// What the recorder needs of the scene for every pixel, computed once.
+pub(crate) struct Sizes<'a> {
+    scene: &'a Scene,
+    /// Each object's anchor, |point|∞: its centre, its plane's point, its corner.
+    anchor: Vec<f64>,
+    max_dist: f64,
+    screen: Screen,
+}
+
+impl<'a> Sizes<'a> {
+    pub(crate) fn new(scene: &'a Scene, max_dist: f64, screen: Screen) -> Sizes<'a> {
+        let anchor = (scene.objects.iter())
+            .map(|object| anchor(&object.shape).abs().max_element())
+            .collect();
+        Sizes {
+            scene,
+            anchor,
+            max_dist,
+            screen,
+        }
+    }
+}
+
+/// The point a shape's equation is written about.
+fn anchor(shape: &Shape) -> DVec3 {
+    match shape {
+        Shape::Sphere(sphere) => sphere.centre,
+        Shape::Plane(plane) => plane.point,
+        Shape::FinitePlane(rectangle) => rectangle.frame.plane.point,
+        Shape::TiledPlane(frame) => frame.plane.point,
+        Shape::Paraboloid(p) => p.equation.frame.centre,
+        Shape::Cylinder(c) => c.equation.frame.centre,
+        Shape::Cone(c) => c.equation.frame.centre,
+        Shape::Hyperboloid(h) => h.equation.frame.centre,
+        Shape::Quadric(q) => q.centred.anchor,
+    }
+}
+
+/// The bounds of a quadric 21-24's local y, if the shape has them.
+fn y_bounds(shape: &Shape) -> Option<(f64, f64)> {
+    let rule = match shape {
+        Shape::Paraboloid(p) => p.equation.rule,
+        Shape::Cylinder(c) => c.equation.rule,
+        Shape::Cone(c) => c.equation.rule,
+        Shape::Hyperboloid(h) => h.equation.rule,
+        _ => return None,
+    };
+    Some(rule.bounds())
+}
+
+/// One pixel's margins, as the tracer tells its steps.
+pub(crate) struct Margins<'s, 'a> {
+    sizes: &'s Sizes<'a>,
+    /// The smallest margin of a decision that chose what the pixel shows.
+    pub(crate) least: f64,
+    /// The object the camera ray hits first, once the first query is answered.
+    pub(crate) first: Option<Option<usize>>,
+    /// How many times the arithmetic's precision the path's points may be off, relative
+    /// to their distance: the largest spread / t of the roots it took (1 for planes). A
+    /// decision downstream of a point, and the bytes, are that much less sure.
+    pub(crate) kappa: f64,
+    /// The current ray's |B|∞.
+    base: f64,
+    /// The distance to the current light (shadow rays), or infinity for a closest-hit
+    /// query.
+    light_dist: f64,
+    /// The current light and the current hit point (for the spotlight's margin).
+    light: usize,
+    point: DVec3,
+    /// The current query's decisions that came near: (potential t, margin).
+    near: Vec<(usize, f64, f64)>,
+    /// The two nearest hits in front of the base: (object, t, the spread of its root),
+    /// nearest first.
+    nearest: [Option<(usize, f64, f64)>; 2],
+    /// The surest blocker's margin so far (shadow rays).
+    surest_blocker: f64,
+    /// The nearest unblocking decision's margin (shadow rays).
+    nearest_miss: f64,
+}
+
+impl<'s, 'a> Margins<'s, 'a> {
+    pub(crate) fn new(sizes: &'s Sizes<'a>) -> Margins<'s, 'a> {
+        Margins {
+            sizes,
+            least: f64::INFINITY,
+            first: None,
+            kappa: 1.0,
+            base: 0.0,
+            light_dist: f64::INFINITY,
+            light: 0,
+            point: DVec3::ZERO,
+            near: Vec::new(),
+            nearest: [None; 2],
+            surest_blocker: 0.0,
+            nearest_miss: f64::INFINITY,
+        }
+    }
+
+    /// Takes a margin of a decision that chose what the pixel shows.
+    fn take(&mut self, margin: f64) {
+        // A NaN margin (a NaN decision) is as unsure as can be.
+        self.least = match margin.is_nan() {
+            true => 0.0,
+            false => self.least.min(margin / self.kappa),
+        };
+    }
+
+    /// A new query along `ray`.
+    fn start(&mut self, ray: &Ray, light_dist: f64) {
+        self.base = ray.base.abs().max_element();
+        self.light_dist = light_dist;
+        self.near.clear();
+        self.nearest = [None; 2];
+        self.surest_blocker = 0.0;
+        self.nearest_miss = f64::INFINITY;
+    }
+
+    /// The size of a point at distance `t` on `object`'s equation.
+    fn size(&self, object: usize, t: f64) -> f64 {
+        self.base + t.abs() + self.sizes.anchor[object]
+    }
+
+    /// The smallest margin of `object`'s decisions in `notes`, and the t where it lies.
+    fn notes_margin(&self, object: usize, notes: &[HitNote]) -> (f64, f64) {
+        let shape = &self.sizes.scene.objects[object].shape;
+        let mut least = (f64::INFINITY, f64::INFINITY);
+        let mut plane_t = f64::INFINITY;
+        let mut take = |margin: f64, t: f64| {
+            if margin.is_nan() || margin < least.0 {
+                least = (margin, t);
+            }
+        };
+        for note in notes {
+            match *note {
+                HitNote::Discriminant {
+                    relative, vertex, ..
+                } => take(relative, vertex),
+                HitNote::Nearer { t: Some(t) } | HitNote::QuadricRoot { t, .. } => {
+                    take(t.abs() / self.size(object, t), t)
+                }
+                HitNote::Root { t, y, .. } => {
+                    let size = self.size(object, t);
+                    take(t.abs() / size, t);
+                    if let Some((low, high)) = y_bounds(shape) {
+                        take((y - low).abs().min((y - high).abs()) / size, t);
+                    }
+                }
+                HitNote::Plane { t, z, .. } => {
+                    plane_t = t;
+                    let size = self.size(object, t);
+                    take(t.abs() / size, t);
+                    let z_rule = match shape {
+                        Shape::Plane(plane) => plane.z_rule,
+                        Shape::TiledPlane(frame) => frame.plane.z_rule,
+                        Shape::FinitePlane(rectangle) => rectangle.frame.plane.z_rule,
+                        _ => false,
+                    };
+                    if z_rule {
+                        take(z.abs() / size, t);
+                    }
+                }
+                HitNote::Rectangle { q, .. } => {
+                    if let Shape::FinitePlane(rectangle) = shape {
+                        let (w, h) = (rectangle.size.x, rectangle.size.y);
+                        let edge =
+                            (q.x.abs().min((q.x - w).abs())).min(q.y.abs().min((q.y - h).abs()));
+                        take(edge / self.size(object, plane_t), plane_t);
+                    }
+                }
+                HitNote::Nearer { t: None } | HitNote::NoRealRoot | HitNote::Parallel => {}
+            }
+        }
+        least
+    }
+
+    /// One object's test along the current ray.
+    fn test(&mut self, object: usize, t: Option<f64>, notes: &[HitNote]) {
+        let (margin, at) = self.notes_margin(object, notes);
+        let shadow = self.light_dist.is_finite();
+        let hit = t.filter(|&t| t > 0.0);
+        if shadow {
+            let dist = self.light_dist;
+            match hit {
+                Some(t) if t < dist => {
+                    let edge = (t - dist).abs() / self.size(object, t);
+                    self.surest_blocker = self.surest_blocker.max(margin.min(edge));
+                }
+                _ => {
+                    let mut miss = if at < dist * (1.0 + MARGIN_REACH) {
+                        margin
+                    } else {
+                        f64::INFINITY
+                    };
+                    if let Some(t) = hit {
+                        miss = miss.min((t - dist).abs() / self.size(object, t));
+                    }
+                    self.nearest_miss = self.nearest_miss.min(miss);
+                }
+            }
+            return;
+        }
+        if margin < MARGIN_REACH {
+            self.near.push((object, at, margin));
+        }
+        if let Some(t) = hit {
+            let spread = (notes.iter())
+                .find_map(|note| match *note {
+                    HitNote::Discriminant { spread, .. } => Some(spread),
+                    _ => None,
+                })
+                .unwrap_or(0.0);
+            let entry = Some((object, t, spread));
+            match self.nearest {
+                [Some((_, first, _)), _] if t < first => self.nearest = [entry, self.nearest[0]],
+                [Some(_), Some((_, second, _))] if t >= second => {}
+                [Some(_), _] => self.nearest[1] = entry,
+                [None, _] => self.nearest[0] = entry,
+            }
+        }
+    }
+
+    /// The closest-hit query's answer: which of its decisions chose it.
+    fn closest(&mut self, hit: Option<(usize, f64)>) {
+        self.first.get_or_insert(hit.map(|(object, _)| object));
+        let best = hit.map_or(f64::INFINITY, |(_, t)| t);
+        let winner = hit.map(|(object, _)| object);
+        let mut least = f64::INFINITY;
+        for &(object, at, margin) in &self.near {
+            if Some(object) == winner || at <= best * (1.0 + MARGIN_REACH) {
+                least = least.min(margin);
+            }
+        }
+        if let [Some((first, t1, _)), Some((_, t2, _))] = self.nearest {
+            least = least.min((t2 - t1) / self.size(first, t2));
+        }
+        self.take(least);
+        // What follows starts from the hit point, as sure as its root (the winner is one
+        // of the two nearest hits).
+        let won = |entry: &Option<(usize, f64, f64)>| entry.filter(|e| Some(e.0) == winner);
+        if let Some((_, t, spread)) = self.nearest.iter().find_map(won) {
+            self.kappa = self.kappa.max(spread / t.abs());
+        }
+    }
+
+    /// The pattern's decision at the hit on `object` at distance `t` (spec §5.4, §5.5,
+    /// §5.8): how far the truncated quantity lay from the next integer.
+    fn pattern(&mut self, object: usize, t: f64, surface: &crate::shapes::Surface) {
+        let record = &self.sizes.scene.objects[object];
+        let size = self.size(object, t);
+        let q = surface.plane_xy;
+        // The distance from `a` to the nearest integer, in units of `cell`.
+        let edge = |a: f64, cell: f64| (a - a.round()).abs() * cell.abs();
+        let margin = match &record.pattern {
+            Pattern::Plain => f64::INFINITY,
+            Pattern::Tiles { tile, .. } => {
+                // trunc(10000 + q/w): the 10000 rounds with q.
+                let x = edge(q.x / tile.x, tile.x) / (size + 1e4 * tile.x.abs());
+                let y = edge(q.y / tile.y, tile.y) / (size + 1e4 * tile.y.abs());
+                x.min(y)
+            }
+            Pattern::Texture {
+                texture,
+                mode,
+                size: fit,
+            } => {
+                let (tw, th) = (texture.width as f64, texture.height as f64);
+                let (sx, sy) = match mode {
+                    TextureMode::Fit => (tw / fit.x, th / fit.y),
+                    TextureMode::Tile => {
+                        let screen = &self.sizes.screen;
+                        let last = screen.last_pixel;
+                        (last.x / screen.window.x, last.y / screen.window.y)
+                    }
+                };
+                let x = edge(q.x * sx, 1.0 / sx);
+                let y = edge(q.y * sy, 1.0 / sy);
+                x.min(y) / size
+            }
+            Pattern::Shader {
+                shader: Shader::Stripes,
+                origin,
+            } => {
+                let v = surface.point - *origin;
+                let terms = [v.x * v.y * v.y / 100.0, v.x * v.y / 100.0];
+                let f = 1000.0 + terms[0] + terms[1];
+                let gradient =
+                    ((v.y * v.y + v.y) / 100.0).abs() + ((2.0 * v.x * v.y + v.x) / 100.0).abs();
+                let scale = 1000.0 + terms[0].abs() + terms[1].abs() + gradient * size;
+                (f - f.round()).abs() / scale
+            }
+            Pattern::Shader {
+                shader: Shader::ColourWheel,
+                ..
+            } => f64::INFINITY,
+        };
+        self.take(margin);
+    }
+}
+
+impl Recorder for Margins<'_, '_> {
+    const ON: bool = true;
+    const EVERY_OBJECT: bool = false;
+    const NOTES: bool = true;
+
+    fn record(&mut self, event: impl FnOnce() -> Event) {
+        match event() {
+            Event::Segment {
+                ray, total_dist, ..
+            } => {
+                if total_dist > 0.0 {
+                    let max = self.sizes.max_dist;
+                    self.take((total_dist - max).abs() / max);
+                }
+                self.start(&ray, f64::INFINITY);
+            }
+            Event::CutOff { total_dist } => {
+                let max = self.sizes.max_dist;
+                self.take((total_dist - max).abs() / max);
+            }
+            Event::Closest { hit } => self.closest(hit),
+            Event::Surface {
+                object,
+                t,
+                surface,
+                pattern,
+                ..
+            } => {
+                self.point = surface.point;
+                if !matches!(pattern, PatternNote::Plain) {
+                    self.pattern(object, t, &surface);
+                }
+            }
+            Event::Lamp { light } => self.light = light,
+            Event::Light(LightStep::Towards { dist, .. }) => self.light_dist = dist,
+            Event::Light(LightStep::Spot { along, .. }) => {
+                let light = &self.sizes.scene.lights[self.light];
+                if let Some(beam) = &light.beam {
+                    let dist = self.light_dist;
+                    let size =
+                        dist + self.point.abs().max_element() + light.location.abs().max_element();
+                    self.take((along - beam.cos_limit).abs() * dist / size);
+                }
+            }
+            Event::Light(LightStep::ShadowRay { ray }) => {
+                let dist = self.light_dist;
+                self.start(&ray, dist);
+            }
+            Event::Light(LightStep::Blocked { blocker }) => {
+                let margin = match blocker {
+                    Some(_) => self.surest_blocker,
+                    None => self.nearest_miss,
+                };
+                self.take(margin);
+                self.light_dist = f64::INFINITY;
+            }
+            _ => {}
+        }
+    }
+
+    fn tested(&mut self, object: usize, t: Option<f64>, notes: &[HitNote]) {
+        self.test(object, t, notes);
+    }
+
+    fn settled(&self) -> bool {
+        self.surest_blocker >= MARGIN_REACH
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::render::{Options, Setup};
+    use crate::shapes::kernel::Accurate;
+
+    /// Two spheres of radius 1 on the z axis, at z = -5 and at `far`, seen from (0, 0, 3).
+    fn two_spheres(far: f64) -> Scene {
+        let sphere = |z: f64| format!("13\n1 1 1\n0 0 0\n0 0 0\n0 0 {z}\n1\n\n");
+        let text = format!("8 6\n0 0 3\n\n{}{}", sphere(-5.0), sphere(far));
+        crate::load(&text).expect("a scene")
+    }
+
+    /// The least margin of the centre pixel of a 3x3 render, whose ray is the z axis.
+    fn centre_margin(scene: &Scene) -> f64 {
+        let options = Options::new(3, 3);
+        let setup = Setup::new(scene, &options);
+        let tracer = setup.tracer(&options);
+        let sizes = Sizes::new(&setup.scene, options.max_dist, tracer.screen());
+        let ray = setup.camera.ray(1, 1).expect("a ray");
+        assert_eq!((ray.base, ray.dir), (DVec3::new(0.0, 0.0, 3.0), -DVec3::Z));
+        let mut rec = Margins::new(&sizes);
+        tracer.pixel::<Accurate>(ray, tracer.objects.tile(1, 1), &mut rec);
+        rec.least
+    }
+
+    #[test]
+    fn a_tie_between_two_objects_has_no_margin() {
+        // Both spheres hit at t = 7 exactly: which is drawn is the tie rule's choice.
+        assert_eq!(centre_margin(&two_spheres(-5.0)), 0.0);
+    }
+
+    #[test]
+    fn the_nearest_decision_is_the_discriminant_of_the_sphere_hit() {
+        // From B = (0, 0, 3) along -z to the sphere at z = -5: a = 1, b = 2 D·(B - C) = -16,
+        // c = |B - C|² - 1 = 63; b² - 4ac = 4 over b² + 4|ac| = 508. The roots 7 and 9 are
+        // far from 0 (7 / (3 + 7 + 5)), and the sphere at z = -9 is hit at t = 11, far
+        // behind: (11 - 7) / (3 + 11 + 5).
+        assert_eq!(centre_margin(&two_spheres(-9.0)), 4.0 / 508.0);
+    }
+
+    #[test]
+    fn the_gap_to_the_next_object_counts_when_it_is_the_nearest() {
+        // The sphere at z = -5.05 is hit at t = 7.05: the gap 0.05 over the size of the
+        // farther point (3 + 7.05 + 5) is below the discriminant's 4 / 508.
+        let expected = (7.05 - 7.0) / (3.0 + 7.05 + 5.0);
+        let margin = centre_margin(&two_spheres(-5.05));
+        assert!((margin - expected).abs() < 1e-12, "{margin} {expected}");
+    }
+}
