@@ -4,12 +4,16 @@
 //! The two are timed alternately, run by run, so that a machine's drift falls on both;
 //! prints the medians and their ratio (issue 25 asks at most 2).
 //!
+//! Then `compare --diagnose` against the plain render, the same way, on every course
+//! scene at 640x480 with a student's image of one mistake (its first object hidden) and
+//! of two (that, and round-bytes): issue 26 asks at most 3.
+//!
 //! Run: `cargo bench --bench compare` (add `-- --runs N` for more runs).
 
 mod support;
 
-use legacy_rt::compare;
-use legacy_rt::render::{Options, render, render_with_margins};
+use legacy_rt::compare::{self, Settings, Tolerance};
+use legacy_rt::render::{Options, Variant, render, render_with_margins};
 use std::path::Path;
 use std::time::Instant;
 
@@ -61,4 +65,72 @@ fn main() {
             b / a
         );
     }
+    diagnose(runs, root);
+}
+
+/// `compare --diagnose` (the reference with its margins, the report, the diagnosis)
+/// against a plain render, on every course scene.
+fn diagnose(runs: usize, root: &Path) {
+    let Ok(dir) = std::fs::read_dir(root.join("../shared/course-scenes")) else {
+        println!("diagnose: skipped, ../shared/course-scenes is absent");
+        return;
+    };
+    let mut paths: Vec<_> = dir.flatten().map(|e| e.path()).collect();
+    paths.retain(|p| p.extension().is_some_and(|e| e == "txt"));
+    paths.sort();
+    let options = Options::new(640, 480);
+    let settings = Settings {
+        tolerance: Tolerance::default(),
+        worst: 10,
+        diagnose: true,
+    };
+    println!();
+    println!("compare --diagnose, 640x480, single thread, median of {runs} alternated runs");
+    println!(
+        "{:<12} {:<28} {:>9} {:>12} {:>7}",
+        "scene", "student's mistakes", "plain ms", "diagnose ms", "ratio"
+    );
+    for path in paths {
+        let name = path.file_stem().unwrap().to_string_lossy().to_string();
+        let text = std::fs::read_to_string(&path).expect("a scene");
+        let scene = legacy_rt::load(&text).expect("the scene loads");
+        let first = scene.objects[0].line;
+        let hidden = Variant::parse(&format!("hidden@{first}")).expect("a variant");
+        let round = Variant::parse("round-bytes").expect("a variant");
+        for mistakes in [vec![hidden], vec![hidden, round]] {
+            let student_options = (mistakes.iter())
+                .try_fold(options, |o, &v| o.with_variant(v))
+                .expect("the mistakes apply");
+            let student = render(&scene, &student_options, |_| {});
+            let plain = || {
+                std::hint::black_box(render(&scene, &options, |_| {}));
+            };
+            let diagnosed = || {
+                let reference = compare::reference(&scene, &options, &student, compare::F32);
+                let with_scene = Some((&scene, &options));
+                let report = compare::report(&reference, &student, with_scene, &settings);
+                std::hint::black_box(report.expect("one size"));
+            };
+            let (mut a, mut b): (Vec<f64>, Vec<f64>) =
+                (0..runs).map(|_| (cpu(&plain), cpu(&diagnosed))).unzip();
+            a.sort_by(f64::total_cmp);
+            b.sort_by(f64::total_cmp);
+            let (a, b) = (a[runs / 2], b[runs / 2]);
+            let ids: Vec<String> = mistakes.iter().map(|v| v.id()).collect();
+            println!(
+                "{name:<12} {:<28} {:>9.1} {:>12.1} {:>7.2}",
+                ids.join(","),
+                a * 1e3,
+                b * 1e3,
+                b / a
+            );
+        }
+    }
+}
+
+/// The wall time of `f` on this thread (single-threaded work: its CPU time).
+fn cpu(f: &dyn Fn()) -> f64 {
+    let start = Instant::now();
+    f();
+    start.elapsed().as_secs_f64()
 }

@@ -80,8 +80,10 @@ pub struct CompareArgs {
     #[arg(long, value_name = "FILE")]
     diff: Option<PathBuf>,
 
-    /// Try every variant of spec §7.3 (the students' common mistakes) and report those
-    /// that explain the student's image better than the reference, best first
+    /// Try every variant of spec §7.3 (the students' common mistakes), and the edits of
+    /// one record of §7.4 (an object hidden, casting no shadow, unlit...; a light off...)
+    /// on the objects and lights the differences involve, and report those that explain
+    /// the student's image better than the reference, best first, with a pixel to trace
     #[arg(long)]
     diagnose: bool,
 
@@ -241,16 +243,13 @@ fn run_inner(args: &CompareArgs) -> Result<bool, Failure> {
     // The choices that made the reference, when it was rendered from the scene.
     let choices = options.is_some().then_some(choices);
     if let Some((options, choices)) = options.as_ref().zip(choices.as_ref()) {
+        let scene = args.reference.display().to_string();
+        let command = |x, y| compare::text::trace_command(choices, options, &scene, x, y);
         for worst in &mut report.worst {
-            let (x, y) = (worst.x, worst.y);
-            let command = compare::text::trace_command(
-                choices,
-                options,
-                &args.reference.display().to_string(),
-                x,
-                y,
-            );
-            worst.trace = Some(command);
+            worst.trace = Some(command(worst.x, worst.y));
+        }
+        for found in report.diagnosis.iter_mut().flatten() {
+            found.trace = found.pixel.map(|[x, y]| command(x, y));
         }
     }
     if let Some(diff) = diff {

@@ -1,21 +1,42 @@
-//! `compare --diagnose`: which of spec §7.3's variants explains a student's image.
+//! `compare --diagnose`: which mistake explains a student's image.
 //!
-//! Each variant is rendered at the image's size and scored by its agreement with the
-//! student's image (the share of pixels within the tolerance); the ones that agree better
-//! than the reference does are listed, best first, and the best is tried together with
-//! each other variant.
+//! The candidates are spec §7.3's variants over the whole image, and the edits of one
+//! record (spec §7.4, `ID@LINE`) on the objects and lights that the differing pixels'
+//! paths involve (the first hit, the mirror's hits, the shadow rays' blockers, the lights
+//! that reach them): a student's own mistake is most often one object or one light done
+//! wrong. Each candidate is first tried on a sample, the differing pixels and as many
+//! agreeing ones, rendered by the renderer's own code ([`render::render_pixels`]), which
+//! estimates its agreement with the student's image (the share of pixels within the
+//! tolerance); only the best few are rendered whole, and what is reported is their exact
+//! agreement. The best is tried together with each other candidate the same way.
 //! MAX_DIST is not guessed from a list: one render with long paths records each pixel's
-//! bytes after each mirror bounce ([`render::path_agreement`]), which gives
-//! the image
+//! bytes after each mirror bounce ([`render::path_agreement`]), which gives the image
 //! under every MAX_DIST at once, and the best D is read off ([`estimate_max_dist`]).
 
 use super::{agreement, pixel_difference};
-use crate::render::{self, Image, Kind, Options, Variant};
+use crate::render::{self, Image, Kind, Options, VARIANTS, Variant, variant::Scope};
 use crate::scene::Scene;
 use serde::Serialize;
 
 /// The longest MAX_DIST `--diagnose` considers: 30 times the course's 32.
 pub const PROBE_LIMIT: f64 = 1000.0;
+
+/// How many differing pixels, and as many agreeing ones, a candidate is tried on: every
+/// candidate on the small sample first, the best [`SHORTLIST`] on the large one.
+const SAMPLE: [usize; 2] = [256, 1024];
+
+/// How many candidates go on from the small sample to the large one.
+const SHORTLIST: usize = 8;
+
+/// How many candidates are rendered whole at most, best estimate first.
+const RENDERED: usize = 1;
+
+/// An agreement that explains the image: no further candidate is rendered whole.
+const EXPLAINED: f64 = 0.999;
+
+/// How many of the objects and of the lights most involved in the differences are
+/// tried with each edit of one record.
+const SUBJECTS: usize = 4;
 
 /// A variant, or two, that explains the student's image better than the reference.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -31,13 +52,51 @@ pub struct Diagnosis {
     /// gives the same image.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub max_dist_range: Option<[f64; 2]>,
+    /// A pixel (x, y from the lower left) the variants explain: it differs from the
+    /// reference and agrees once they apply.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub pixel: Option<[usize; 2]>,
+    /// For a variant of one record: what it is, "cone (line 34)" or "light (line 7)".
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub subject: Option<String>,
+    /// The command that traces `pixel` in the reference, when the command line knows the
+    /// scene's file name.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub trace: Option<String>,
 }
 
-/// What one variant (or pair) scored.
+/// Where the differences concentrate when no variant explains them: the object most
+/// involved, and how the differing pixels' paths meet it.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Focus {
+    /// "cone (line 34)".
+    pub object: String,
+    /// Its index among the scene's objects.
+    pub index: usize,
+    /// The share of the (sampled) differing pixels whose path involves it (0 to 1).
+    pub share: f64,
+    /// Of those, the shares where the camera ray hits it, where it blocks a shadow ray,
+    /// and where a mirror ray hits it.
+    pub camera: f64,
+    /// See `camera`.
+    pub shadow: f64,
+    /// See `camera`.
+    pub mirror: f64,
+}
+
+/// What one candidate scored.
+#[derive(Clone)]
 struct Tried {
     variants: Vec<Variant>,
     agreement: f64,
     max_dist_range: Option<[f64; 2]>,
+    pixel: Option<usize>,
+}
+
+/// Every `n`-th of `indices`, about `count` of them, spread over the image.
+fn spread(indices: &[usize], count: usize) -> Vec<usize> {
+    let step = indices.len().div_ceil(count.max(1)).max(1);
+    indices.iter().step_by(step).copied().collect()
 }
 
 /// The variants that explain `student` better than `reference` (the image of `options`,
@@ -51,33 +110,107 @@ pub fn diagnose(
     student: &Image,
     levels: u8,
 ) -> Vec<Diagnosis> {
+    diagnose_and_focus(scene, options, reference, student, levels).0
+}
+
+/// [`diagnose`], and where the differences concentrate ([`Focus`]) when they involve
+/// objects.
+pub fn diagnose_and_focus(
+    scene: &Scene,
+    options: &Options,
+    reference: &Image,
+    student: &Image,
+    levels: u8,
+) -> (Vec<Diagnosis>, Option<Focus>) {
     let before = agreement(reference, student, levels);
     if before >= 1.0 {
-        return Vec::new();
+        return (Vec::new(), None);
     }
-    let score = |variants: &[Variant]| -> Option<f64> {
+    let agrees = |i: usize, bytes: [u8; 3]| pixel_difference(bytes, student.pixels[i]) <= levels;
+    let (differing, agreeing): (Vec<usize>, Vec<usize>) =
+        (0..reference.pixels.len()).partition(|&i| !agrees(i, reference.pixels[i]));
+    let samples = SAMPLE.map(|n| (spread(&differing, n), spread(&agreeing, n)));
+    let total = reference.pixels.len() as f64;
+    // The agreement a candidate would have, from its bytes on sample `k`; and a pixel it
+    // explains.
+    let estimate_on = |k: usize, variants: &[Variant]| -> Option<(f64, Option<usize>)> {
         let options = variants
             .iter()
             .try_fold(*options, |o, &v| o.with_variant(v).ok())?;
-        let image = render::render(scene, &options, |_| {});
-        Some(agreement(&image, student, levels))
+        let (sample_d, sample_a) = &samples[k];
+        let sample: Vec<usize> = sample_d.iter().chain(sample_a).copied().collect();
+        let bytes = render::render_pixels(scene, &options, &sample);
+        let fixed: Vec<usize> = (sample_d.iter().zip(&bytes))
+            .filter(|&(&i, &b)| agrees(i, b))
+            .map(|(&i, _)| i)
+            .collect();
+        let kept = (sample_a.iter().zip(&bytes[sample_d.len()..]))
+            .filter(|&(&i, &b)| agrees(i, b))
+            .count();
+        let share = |n: usize, of: usize| n as f64 / of.max(1) as f64;
+        let after = differing.len() as f64 * share(fixed.len(), sample_d.len())
+            + agreeing.len() as f64 * share(kept, sample_a.len());
+        Some((after / total, fixed.first().copied()))
     };
-    let mut found: Vec<Tried> = Vec::new();
-    for variant in Variant::tried() {
-        if variant.kernel() == Some(options.kernel) {
-            continue;
-        }
-        if let Some(agreement) = score(&[variant])
-            && agreement > before
-        {
-            found.push(Tried {
-                variants: vec![variant],
+    let exact = |variants: &[Variant]| -> Option<f64> {
+        let options = variants
+            .iter()
+            .try_fold(*options, |o, &v| o.with_variant(v).ok())?;
+        Some(agreement(
+            &render::render(scene, &options, |_| {}),
+            student,
+            levels,
+        ))
+    };
+    // Tried on the small sample, then the best few on the large one.
+    let estimate = |variants: &[Variant]| estimate_on(1, variants);
+    let shortlist = |candidates: &mut Vec<(Vec<Variant>, f64)>| {
+        candidates.sort_by(|a, b| b.1.total_cmp(&a.1));
+        candidates.truncate(SHORTLIST);
+    };
+    let paths = render::involved(scene, options, &samples[1].0);
+    let focus = focus(scene, &paths);
+    let mut candidates: Vec<Variant> = (Variant::tried())
+        .filter(|v| v.kernel() != Some(options.kernel))
+        .collect();
+    candidates.extend(scoped(scene, &paths));
+    let mut first_round: Vec<(Vec<Variant>, f64)> = (candidates.iter())
+        .filter_map(|&v| Some((vec![v], estimate_on(0, &[v])?.0)))
+        .filter(|(_, agreement)| *agreement > before)
+        .collect();
+    shortlist(&mut first_round);
+    let mut estimated: Vec<Tried> = (first_round.into_iter())
+        .filter_map(|(variants, _)| {
+            let (agreement, pixel) = estimate(&variants)?;
+            (agreement > before).then_some(Tried {
+                variants,
                 agreement,
                 max_dist_range: None,
-            });
+                pixel,
+            })
+        })
+        .collect();
+    // Best first; a stable sort keeps the table's order among equals.
+    estimated.sort_by(|a, b| b.agreement.total_cmp(&a.agreement));
+    // Rendered whole, best estimate first, until one explains the image.
+    let mut found: Vec<Tried> = Vec::new();
+    for tried in estimated.into_iter().take(RENDERED) {
+        if found.iter().any(|t| t.agreement >= EXPLAINED) {
+            break;
+        }
+        if let Some(agreement) = exact(&tried.variants)
+            && agreement > before
+        {
+            found.push(Tried { agreement, ..tried });
         }
     }
-    if let Some((d, range, agreement)) = estimate_max_dist(scene, options, student, levels)
+    // MAX_DIST can change only the pixels whose path reflects, and is estimated (at the
+    // cost of a render) only where they differ and nothing yet explains them.
+    let reflected = paths.iter().any(|path| path.reflected);
+    let explained = found.iter().any(|t| t.agreement >= EXPLAINED);
+    if reflected
+        && !explained
+        && let Some((d, range, agreement)) = estimate_max_dist(scene, options, student, levels)
         && agreement > before
     {
         found.push(Tried {
@@ -87,22 +220,29 @@ pub fn diagnose(
             }],
             agreement,
             max_dist_range: Some(range),
+            pixel: None,
         });
     }
-    // Best first; a stable sort keeps spec §7.3's order among equals.
     found.sort_by(|a, b| b.agreement.total_cmp(&a.agreement));
-    // The best one with each other variant: a second mistake often shows only once the
+    // The best one with each other candidate: a second mistake often shows only once the
     // first is undone (an image upside down hides everything else).
-    if let Some(best) = found.first().filter(|best| best.agreement < 1.0) {
+    if let Some(best) = found.first().filter(|best| best.agreement < 1.0).cloned() {
         let first = best.variants[0];
         let mut estimated = found.iter().map(|t| t.variants[0]);
         let max_dist = estimated.rfind(|v| v.kind == Kind::MaxDist);
-        let partners = Variant::tried().chain(max_dist);
-        let pairs = partners
+        let partners = candidates.iter().copied().chain(max_dist);
+        let mut pairs: Vec<(Vec<Variant>, f64)> = partners
             .filter(|&partner| partner.id() != first.id())
-            .filter_map(|partner| Some((partner, score(&[first, partner])?)));
-        let top = pairs.max_by(|a, b| a.1.total_cmp(&b.1).then(std::cmp::Ordering::Greater));
-        if let Some((partner, agreement)) = top
+            .filter_map(|partner| {
+                Some((vec![first, partner], estimate_on(0, &[first, partner])?.0))
+            })
+            .collect();
+        shortlist(&mut pairs);
+        let pairs = (pairs.into_iter()).filter_map(|(pair, _)| Some((pair[1], estimate(&pair)?)));
+        let top = pairs.max_by(|a, b| a.1.0.total_cmp(&b.1.0).then(std::cmp::Ordering::Greater));
+        if let Some((partner, (estimated, pixel))) = top
+            && estimated > best.agreement
+            && let Some(agreement) = exact(&[first, partner])
             && agreement > best.agreement
         {
             let range = match (first.kind, partner.kind) {
@@ -110,25 +250,126 @@ pub fn diagnose(
                 (_, Kind::MaxDist) => found.iter().find_map(|t| t.max_dist_range),
                 _ => None,
             };
-            found.insert(
-                0,
-                Tried {
-                    variants: vec![first, partner],
-                    agreement,
-                    max_dist_range: range,
-                },
-            );
+            let pair = Tried {
+                variants: vec![first, partner],
+                agreement,
+                max_dist_range: range,
+                pixel,
+            };
+            found.insert(0, pair);
         }
     }
-    found
+    let (width, height) = (reference.width.max(1), reference.height);
+    let diagnoses = found
         .into_iter()
         .map(|tried| Diagnosis {
+            subject: subject(scene, &tried.variants),
             variants: tried.variants,
             agreement_before: before,
             agreement_after: tried.agreement,
             max_dist_range: tried.max_dist_range,
+            pixel: tried.pixel.map(|i| [i % width, height - 1 - i / width]),
+            trace: None,
         })
-        .collect()
+        .collect();
+    (diagnoses, focus)
+}
+
+/// "cone (line 34)" for the record a scoped variant among `variants` names.
+fn subject(scene: &Scene, variants: &[Variant]) -> Option<String> {
+    let line = variants.iter().find_map(|v| v.line)?;
+    let object = scene.objects.iter().find(|o| o.line == line);
+    let kind = object.map_or("light", |o| o.kind);
+    Some(format!("{kind} (line {line})"))
+}
+
+/// The edits of one record on the objects and the lights most involved in the sampled
+/// differing pixels' paths, most involved first.
+fn scoped(scene: &Scene, paths: &[render::Involved]) -> Vec<Variant> {
+    let mut objects = vec![0usize; scene.objects.len()];
+    let mut lights = vec![0usize; scene.lights.len()];
+    for path in paths {
+        let mut seen: Vec<usize> = path.hits.clone();
+        seen.extend(path.blockers.iter().map(|&(object, _)| object));
+        seen.sort_unstable();
+        seen.dedup();
+        for object in seen {
+            objects[object] += 1;
+        }
+        let mut lit: Vec<usize> = path.lit_by.clone();
+        lit.extend(path.blockers.iter().map(|&(_, light)| light));
+        lit.sort_unstable();
+        lit.dedup();
+        for light in lit {
+            lights[light] += 1;
+        }
+    }
+    let most = |counts: &[usize]| -> Vec<usize> {
+        let mut order: Vec<usize> = (0..counts.len()).filter(|&i| counts[i] > 0).collect();
+        order.sort_by_key(|&i| std::cmp::Reverse(counts[i]));
+        order.truncate(SUBJECTS);
+        order
+    };
+    let rows = |light: bool| {
+        VARIANTS.iter().filter(move |row| match row.scope {
+            Scope::ImageOrObject(_) | Scope::Object(_) => !light,
+            Scope::ImageOrLight | Scope::Light => light,
+            Scope::Image => false,
+        })
+    };
+    let mut edits = Vec::new();
+    for object in most(&objects) {
+        let line = scene.objects[object].line;
+        edits.extend(rows(false).map(|row| Variant::of(row.kind).at(line)));
+    }
+    for light in most(&lights) {
+        let line = scene.lights[light].line;
+        edits.extend(rows(true).map(|row| Variant::of(row.kind).at(line)));
+    }
+    edits
+}
+
+/// The object most involved in the sampled differing pixels' paths, and how.
+fn focus(scene: &Scene, paths: &[render::Involved]) -> Option<Focus> {
+    let mut counts = vec![[0usize; 4]; scene.objects.len()];
+    for path in paths {
+        let mut any = vec![false; 0];
+        any.resize(scene.objects.len(), false);
+        if let Some(&first) = path.hits.first() {
+            counts[first][1] += 1;
+            any[first] = true;
+        }
+        for &(object, _) in &path.blockers {
+            if !any[object] {
+                counts[object][2] += 1;
+            }
+            any[object] = true;
+        }
+        for &object in path.hits.iter().skip(1) {
+            if !any[object] {
+                counts[object][3] += 1;
+            }
+            any[object] = true;
+        }
+        for (object, &seen) in any.iter().enumerate() {
+            counts[object][0] += usize::from(seen);
+        }
+    }
+    let index = (0..counts.len()).max_by_key(|&i| (counts[i][0], std::cmp::Reverse(i)))?;
+    let [n, camera, shadow, mirror] = counts[index];
+    if n == 0 {
+        return None;
+    }
+    let object = &scene.objects[index];
+    let share = |k: usize| k as f64 / n as f64;
+    Some(Focus {
+        object: format!("{} (line {})", object.kind, object.line),
+        index,
+        share: n as f64 / paths.len().max(1) as f64,
+        camera: share(camera),
+        shadow: share(shadow),
+        mirror: share(mirror),
+    })
 }
 
 /// The MAX_DIST D under which the scene's image agrees best with `student`, the range of
@@ -141,6 +382,16 @@ pub fn estimate_max_dist(
     student: &Image,
     levels: u8,
 ) -> Option<(f64, [f64; 2], f64)> {
+    // MAX_DIST cuts mirror paths only (spec §4.2 step 1 never stops the camera ray): a
+    // scene without a mirror has one image under every D.
+    let mirror = |m: &crate::scene::Material| m.specular != glam::DVec3::ZERO;
+    let reflects = scene.objects.iter().any(|o| {
+        mirror(&o.material)
+            || matches!(&o.pattern, crate::scene::Pattern::Tiles { background, .. } if mirror(background))
+    });
+    if !reflects {
+        return None;
+    }
     let probe = Options {
         max_dist: PROBE_LIMIT.max(options.max_dist),
         ..*options

@@ -11,7 +11,9 @@ mod diagnose;
 pub mod read;
 pub mod text;
 
-pub use diagnose::{Diagnosis, PROBE_LIMIT, diagnose, estimate_max_dist, roundest};
+pub use diagnose::{
+    Diagnosis, Focus, PROBE_LIMIT, diagnose, diagnose_and_focus, estimate_max_dist, roundest,
+};
 pub use read::{ReadError, read_image};
 
 use crate::render::{self, Image, Options};
@@ -202,6 +204,9 @@ pub struct Report {
     /// reference does, best first.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub diagnosis: Option<Vec<Diagnosis>>,
+    /// With diagnose: the object the differing pixels' paths involve most, and how.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub focus: Option<Focus>,
     /// The size the grader required (`--size W H`), when the student's image has
     /// another: `[W, H]` with verdict `wrong-size`.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -266,6 +271,7 @@ pub fn wrong_size(student: &Image, expected: (usize, usize), settings: &Settings
         groups: Vec::new(),
         worst: Vec::new(),
         diagnosis: None,
+        focus: None,
         expected_size: Some([expected.0, expected.1]),
     }
 }
@@ -326,16 +332,22 @@ pub fn report(
         }
         _ => Vec::new(),
     };
-    let mut order: Vec<usize> = (0..pixels).filter(|&i| beyond(i)).collect();
     // The differences that count first, then the largest difference, then the largest
     // sum over the channels, then the first in the image: the same order on every run.
+    // Only the first `worst` are sorted.
     let sum = |i: usize| -> u16 {
         let (a, b) = (reference.pixels[i], student.pixels[i]);
         (0..3).map(|c| u16::from(a[c].abs_diff(b[c]))).sum()
     };
-    order.sort_by_key(|&i| (excused(i), std::cmp::Reverse((differences[i], sum(i))), i));
-    let worst = (order.iter().take(settings.worst))
-        .map(|&i| Worst {
+    let key = |i: usize| (excused(i), std::cmp::Reverse((differences[i], sum(i))), i);
+    let mut order: Vec<_> = (0..pixels).filter(|&i| beyond(i)).map(key).collect();
+    if order.len() > settings.worst {
+        order.select_nth_unstable(settings.worst);
+        order.truncate(settings.worst);
+    }
+    order.sort_unstable();
+    let worst = (order.iter().map(|&(_, _, i)| i))
+        .map(|i| Worst {
             x: i % width,
             y: height - 1 - i / width,
             reference: reference.pixels[i],
@@ -345,16 +357,17 @@ pub fn report(
             trace: None,
         })
         .collect();
-    let diagnosis = match scene {
+    let (diagnosis, focus) = match scene {
         Some((scene, options)) if settings.diagnose => {
             let options = Options {
                 width,
                 height,
                 ..*options
             };
-            Some(diagnose(scene, &options, reference, student, levels))
+            let (found, focus) = diagnose_and_focus(scene, &options, reference, student, levels);
+            (Some(found), focus)
         }
-        _ => None,
+        _ => (None, None),
     };
     Ok(Report {
         verdict,
@@ -373,6 +386,7 @@ pub fn report(
         groups,
         worst,
         diagnosis,
+        focus,
         expected_size: None,
     })
 }

@@ -90,6 +90,30 @@ fn agreement(share: f64) -> String {
     format!("{:.2} %", (share * 10_000.0).floor() / 100.0)
 }
 
+/// The agreement from which the report says that one record's edit explains the image.
+const LOCALISED: f64 = 0.99;
+
+/// What a one-record edit does to its record, and where in the student's program to look.
+fn advice(variant: crate::render::Variant) -> (String, &'static str) {
+    use crate::render::Kind;
+    match variant.kind {
+        Kind::Hidden => (
+            "is not seen".into(),
+            "its hit test on camera and mirror rays",
+        ),
+        Kind::NoShadow => ("casts no shadow".into(), "its hit test on shadow rays"),
+        Kind::Unlit => ("receives no diffuse light".into(), "its diffuse term"),
+        Kind::NoMirror => ("reflects nothing".into(), "its mirror ray"),
+        Kind::FlippedNormal => ("has its normal reversed".into(), "its normal"),
+        Kind::NoLight => ("is off".into(), "the loop over the lights"),
+        Kind::Unshadowed => ("is never blocked".into(), "its shadow rays"),
+        _ => (
+            format!("is rendered with --variant {}", variant.id()),
+            "the rule it replaces",
+        ),
+    }
+}
+
 /// The report as `legacy-rt compare` prints it: `reference` and `student` name the two
 /// files, and `choices` are those the reference was rendered with (`None` when it is an
 /// image).
@@ -231,6 +255,45 @@ pub fn text(report: &Report, reference: &str, student: &str, choices: Option<&Ch
                     about.join("; ")
                 ));
             }
+            // The best, when it is one record's edit that explains nearly everything, in
+            // words a student acts on.
+            let best = &diagnosis[0];
+            if let (Some(subject), [variant]) = (&best.subject, best.variants.as_slice())
+                && best.agreement_after >= LOCALISED
+            {
+                let (what, look) = advice(*variant);
+                let mut sentence = format!(
+                    "your image agrees with the reference at {} if {subject} {what}: look at {look}",
+                    agreement(best.agreement_after)
+                );
+                if let Some(trace) = &best.trace {
+                    sentence += &format!("; `{trace}` shows one");
+                }
+                line(sentence);
+            }
+        }
+        if let Some(focus) = &report.focus
+            && diagnosis
+                .first()
+                .is_none_or(|best| best.agreement_after < LOCALISED)
+        {
+            let part = |share: f64, what: &str| {
+                (share > 0.0).then(|| format!("{} {what}", percent_of(share)))
+            };
+            let parts: Vec<String> = [
+                part(focus.camera, "where the camera ray hits it"),
+                part(focus.shadow, "where it blocks a shadow ray"),
+                part(focus.mirror, "where a mirror shows it"),
+            ]
+            .into_iter()
+            .flatten()
+            .collect();
+            line(format!(
+                "the differences concentrate on {}: {} of the differing pixels involve it ({})",
+                focus.object,
+                percent_of(focus.share),
+                parts.join(", ")
+            ));
         }
     }
     out

@@ -485,6 +485,99 @@ fn margins_of<B: Rulebook>(
     })
 }
 
+/// The bytes of the pixels `indices` (output order: row 0 at the top) of the scene's
+/// image under `options`, without the rest: the same bytes as [`render`] gives there. For
+/// `compare --diagnose`, which tries a variant on a sample of pixels before it renders a
+/// whole image. The camera rays go without the tiles (which pay off only over a whole
+/// image); the hierarchy is kept.
+pub fn render_pixels(scene: &Scene, options: &Options, indices: &[usize]) -> Vec<[u8; 3]> {
+    at_pixels(scene, options, indices, |setup, tracer, ray| {
+        let colour = match ray {
+            Some(ray) => with_kernel!(options.kernel, K => tracer.pixel::<K>(ray, None, &mut ())),
+            None => DVec3::ZERO,
+        };
+        setup.rules.bytes(colour)
+    })
+}
+
+/// `per_pixel(setup, tracer, camera ray)` for each of the pixels `indices` (output
+/// order), with a tracer without tiles.
+fn at_pixels<T>(
+    scene: &Scene,
+    options: &Options,
+    indices: &[usize],
+    per_pixel: impl Fn(&Setup, &Tracer<&Rules>, Option<Ray>) -> T,
+) -> Vec<T> {
+    let setup = Setup::new(scene, options);
+    let tracer = Tracer::new(&setup.scene, &setup.rules, options, None);
+    let width = options.width.max(1);
+    (indices.iter())
+        .map(|&i| {
+            let (x, y) = (i % width, setup.row_of(i / width, options.height));
+            per_pixel(&setup, &tracer, setup.camera.ray(x, y))
+        })
+        .collect()
+}
+
+/// What one pixel's path involves: the objects it hits (the camera ray's and each
+/// mirror ray's), the objects that block its shadow rays, and the lights that light it
+/// or whose shadow rays are blocked; indices among the scene's objects and lights.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct Involved {
+    /// The objects hit, camera ray first, then each mirror ray's.
+    pub hits: Vec<usize>,
+    /// The objects that block a shadow ray, with the light's index.
+    pub blockers: Vec<(usize, usize)>,
+    /// The lights that add to the colour.
+    pub lit_by: Vec<usize>,
+    /// Whether a mirror ray leaves the path's first hit: only then can MAX_DIST change
+    /// the pixel (spec §4.2 step 1).
+    pub reflected: bool,
+}
+
+impl Recorder for Involved {
+    const ON: bool = true;
+    const EVERY_OBJECT: bool = false;
+
+    fn record(&mut self, event: impl FnOnce() -> Event) {
+        match event() {
+            Event::Closest {
+                hit: Some((object, _)),
+            } => self.hits.push(object),
+            Event::Segment { depth, .. } if depth > 0 => self.reflected = true,
+            Event::CutOff { .. } => self.reflected = true,
+            Event::Lamp { light } => self.lit_by.push(light),
+            // A light that added nothing does not light the pixel.
+            Event::Lit {
+                light,
+                contribution,
+                ..
+            } if contribution == DVec3::ZERO && self.lit_by.last() == Some(&light) => {
+                self.lit_by.pop();
+            }
+            Event::Light(LightStep::Blocked {
+                blocker: Some((object, _)),
+            }) => {
+                if let Some(&light) = self.lit_by.last() {
+                    self.blockers.push((object, light));
+                }
+            }
+            _ => {}
+        }
+    }
+}
+
+/// What the paths of the pixels `indices` (output order) involve, under `options`.
+pub fn involved(scene: &Scene, options: &Options, indices: &[usize]) -> Vec<Involved> {
+    at_pixels(scene, options, indices, |_, tracer, ray| {
+        let mut path = Involved::default();
+        if let Some(ray) = ray {
+            with_kernel!(options.kernel, K => tracer.pixel::<K>(ray, None, &mut path));
+        }
+        path
+    })
+}
+
 /// Where a pixel's bytes change as MAX_DIST grows: once D reaches `start` (where a
 /// segment of the pixel's path starts), the pixel's bytes are those with that segment
 /// added, and they agree with the student's or not.

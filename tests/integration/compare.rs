@@ -579,3 +579,269 @@ fn reports_read_as_reviewed() {
         snapshots().bind(|| insta::assert_snapshot!(format!("compare_{name}"), text));
     }
 }
+
+#[test]
+fn an_edit_of_one_record_is_diagnosed_as_itself() {
+    let dir = folder("edits");
+    let spec1 = || course("spec1");
+    let ex = |name: &str| Some(example(name));
+    // Each edit of spec §7.4 and a scoped variant of §7.3, on three scenes where it
+    // changes the image (and no other candidate gives that image).
+    let cases: Vec<(&str, Option<PathBuf>)> = vec![
+        ("hidden@11", ex("shadows")),
+        ("hidden@4", ex("spheres")),
+        ("hidden@4", spec1()),
+        ("no-shadow@11", ex("shadows")),
+        ("no-shadow@4", ex("mirrors")),
+        ("no-shadow@11", spec1()),
+        ("unlit@11", ex("shadows")),
+        ("unlit@12", ex("cones")),
+        ("unlit@11", spec1()),
+        ("no-mirror@4", ex("mirrors")),
+        ("no-mirror@11", ex("studio")),
+        ("no-mirror@4", spec1()),
+        ("flipped-normal@11", ex("shadows")),
+        ("flipped-normal@4", ex("spheres")),
+        ("flipped-normal@12", ex("cones")),
+        ("no-light@32", ex("shadows")),
+        ("no-light@18", ex("lights")),
+        ("no-light@28", ex("cones")),
+        ("unshadowed@32", ex("shadows")),
+        ("unshadowed@46", ex("studio")),
+        ("unshadowed@46", spec1()),
+        ("nearer-root@4", ex("paraboloids")),
+        ("nearer-root@4", ex("note003_records")),
+        ("nearer-root@20", ex("cones")),
+    ];
+    for (id, scene) in cases {
+        let Some(scene) = scene else { continue };
+        let student = dir.join("student.ppm");
+        render(&scene, (160, 120), &["--variant", id], &student);
+        let args = [
+            "--diagnose",
+            scene.to_str().unwrap(),
+            student.to_str().unwrap(),
+        ];
+        let (status, json) = report(&args);
+        let case = format!("{id} on {}", scene.display());
+        assert_eq!(status, 1, "{case}: {json}");
+        let diagnosis = json["diagnosis"].as_array().unwrap();
+        assert_eq!(ids(&diagnosis[0]), [id], "{case}: {diagnosis:#?}");
+        let agreement = diagnosis[0]["agreement_after"].as_f64().unwrap();
+        assert!(agreement >= 0.999, "{case}: {agreement}");
+        // The report names the record, and a pixel to trace that the edit explains.
+        let line: usize = id.rsplit_once('@').unwrap().1.parse().unwrap();
+        assert!(
+            diagnosis[0]["subject"]
+                .as_str()
+                .unwrap()
+                .ends_with(&format!("(line {line})")),
+            "{case}"
+        );
+        let [x, y] = [0, 1].map(|k| diagnosis[0]["pixel"][k].as_u64().unwrap() as usize);
+        let reference = dir.join("reference.ppm");
+        render(&scene, (160, 120), &[], &reference);
+        let (_, h, reference) = read_ppm(&reference);
+        let (_, _, edited) = read_ppm(&student);
+        let i = (h - 1 - y) * 160 + x;
+        assert_ne!(reference[i], edited[i], "{case}: ({x}, {y}) differs");
+        let text = stdout(&compare(&args[..]));
+        assert!(
+            text.contains("your image agrees with the reference at"),
+            "{text}"
+        );
+        assert!(
+            text.contains(&format!("legacy-rt trace {x} {y} 160 120")),
+            "{text}"
+        );
+    }
+}
+
+/// A tiny tracer of spec §4 and §5.1-§5.2, written here for spheres, planes and point
+/// lights without mirrors, independent of the program: the scene `text` at (w, h), with
+/// `no_shadow` (an object's index) left out of the shadow rays, as a student's program
+/// that forgot it would. Returns the pixels, top row first.
+fn tiny_tracer(text: &str, (w, h): (usize, usize), no_shadow: usize) -> Vec<[u8; 3]> {
+    type V = [f64; 3];
+    let sub = |a: V, b: V| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+    let dot = |a: V, b: V| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let scale = |a: V, k: f64| [a[0] * k, a[1] * k, a[2] * k];
+    let unit = |a: V| scale(a, 1.0 / dot(a, a).sqrt());
+    // The numbers of each line, in order: a line's leading numbers, then its comment.
+    let numbers: Vec<f64> = (text.lines())
+        .flat_map(|line| {
+            let values: Vec<f64> = (line.split_whitespace())
+                .map_while(|word| word.parse().ok())
+                .collect();
+            values
+        })
+        .collect();
+    let at = std::cell::Cell::new(0);
+    let take = |n: usize| -> Vec<f64> {
+        at.set(at.get() + n);
+        numbers[at.get() - n..at.get()].to_vec()
+    };
+    let triple = |v: Vec<f64>| [v[0], v[1], v[2]];
+    let window = take(2);
+    let eye = triple(take(3));
+    // (ambient, diffuse, shape): a sphere (centre, r) or a plane (unit normal, point).
+    enum Shape {
+        Sphere(V, f64),
+        Plane(V, V),
+    }
+    let mut objects: Vec<(V, V, Shape)> = Vec::new();
+    let mut lights: Vec<(V, V)> = Vec::new();
+    while let Some(&code) = numbers.get(at.get()) {
+        at.set(at.get() + 1);
+        match code as i32 {
+            10 => lights.push((triple(take(3)), triple(take(3)))),
+            13 | 14 => {
+                let (ambient, diffuse, _specular) = (triple(take(3)), triple(take(3)), take(3));
+                let shape = match code as i32 {
+                    13 => Shape::Sphere(triple(take(3)), take(1)[0]),
+                    _ => Shape::Plane(unit(triple(take(3))), triple(take(3))),
+                };
+                objects.push((ambient, diffuse, shape));
+            }
+            other => panic!("the tiny tracer has no type {other}"),
+        }
+    }
+    // t along (b, d), or None; spec §5.2's smaller root, §5.1's z rule.
+    let hit = |shape: &Shape, b: V, d: V| -> Option<f64> {
+        let t = match *shape {
+            Shape::Sphere(c, r) => {
+                let bc = sub(b, c);
+                let (a, bb, cc) = (dot(d, d), 2.0 * dot(bc, d), dot(bc, bc) - r * r);
+                let disc = bb * bb - 4.0 * a * cc;
+                if disc <= 0.0 {
+                    return None;
+                }
+                (-bb - disc.sqrt()) / (2.0 * a)
+            }
+            Shape::Plane(n, q) => {
+                let nd = dot(n, d);
+                if nd == 0.0 {
+                    return None;
+                }
+                let t = (dot(n, q) - dot(n, b)) / nd;
+                if b[2] + t * d[2] > 0.0 {
+                    return None;
+                }
+                t
+            }
+        };
+        (t > 0.0).then_some(t)
+    };
+    let mut pixels = vec![[0u8; 3]; w * h];
+    for y in 0..h {
+        for x in 0..w {
+            let p = [
+                x as f64 / (w - 1) as f64 * window[0] - window[0] / 2.0,
+                y as f64 / (h - 1) as f64 * window[1] - window[1] / 2.0,
+                0.0,
+            ];
+            let d = unit(sub(p, eye));
+            let mut best: Option<(usize, f64)> = None;
+            for (i, object) in objects.iter().enumerate() {
+                if let Some(t) = hit(&object.2, eye, d)
+                    && best.is_none_or(|(_, b)| t < b)
+                {
+                    best = Some((i, t));
+                }
+            }
+            let Some((i, t)) = best else { continue };
+            let (ambient, diffuse, shape) = &objects[i];
+            let point = [eye[0] + t * d[0], eye[1] + t * d[1], eye[2] + t * d[2]];
+            let normal = match *shape {
+                Shape::Sphere(c, _) => unit(sub(point, c)),
+                Shape::Plane(n, _) => n,
+            };
+            let mut colour = *ambient;
+            for &(emissivity, location) in &lights {
+                let to_light = sub(location, point);
+                let dist = dot(to_light, to_light).sqrt();
+                let u = scale(to_light, 1.0 / dist);
+                let cos = dot(normal, u);
+                if cos <= 0.0 {
+                    continue;
+                }
+                let blocked = (objects.iter().enumerate())
+                    .filter(|&(j, _)| j != i && j != no_shadow)
+                    .any(|(_, o)| hit(&o.2, point, u).is_some_and(|s| s < dist));
+                if !blocked {
+                    for c in 0..3 {
+                        colour[c] += diffuse[c] * emissivity[c] * cos / dist;
+                    }
+                }
+            }
+            let byte = |c: f64| (c / t).clamp(0.0, 1.0) * 255.0;
+            pixels[(h - 1 - y) * w + x] = colour.map(|c| byte(c) as u8);
+        }
+    }
+    pixels
+}
+
+#[test]
+fn a_student_s_own_shadow_mistake_is_localised_to_the_object() {
+    let dir = folder("tiny");
+    let scene = example("shadows");
+    let text = std::fs::read_to_string(&scene).unwrap();
+    let size = (160, 120);
+    // Unbroken, the tiny tracer draws the reference: it is a correct tracer.
+    let student = dir.join("correct.ppm");
+    write_ppm(&student, size, &tiny_tracer(&text, size, usize::MAX));
+    let (status, json) = report(&[scene.to_str().unwrap(), student.to_str().unwrap()]);
+    assert_eq!(status, 0, "{json}");
+    // Its small white sphere (the fourth record, line 25) casts no shadow.
+    let student = dir.join("student.ppm");
+    write_ppm(&student, size, &tiny_tracer(&text, size, 3));
+    let args = [
+        "--diagnose",
+        scene.to_str().unwrap(),
+        student.to_str().unwrap(),
+    ];
+    let (status, json) = report(&args);
+    assert_eq!(status, 1);
+    let best = &json["diagnosis"][0];
+    assert_eq!(ids(best), ["no-shadow@25"], "{json:#}");
+    assert!(
+        best["agreement_after"].as_f64().unwrap() >= 0.999,
+        "{json:#}"
+    );
+    let text = stdout(&compare(&args));
+    let sentence = "if sphere (line 25) casts no shadow: look at its hit test on shadow rays";
+    assert!(text.contains(sentence), "{text}");
+}
+
+#[test]
+fn a_mistake_of_the_whole_image_is_not_pinned_on_one_object() {
+    let dir = folder("shifted");
+    for name in ["shadows", "spheres", "cones"] {
+        let scene = example(name);
+        let reference = dir.join("reference.ppm");
+        render(&scene, (160, 120), &[], &reference);
+        // Every row shifted one pixel to the right: no record's edit does that.
+        let (w, h, pixels) = read_ppm(&reference);
+        let shifted: Vec<[u8; 3]> = (0..w * h)
+            .map(|i| if i % w == 0 { pixels[i] } else { pixels[i - 1] })
+            .collect();
+        let student = dir.join("shifted.ppm");
+        write_ppm(&student, (w, h), &shifted);
+        let args = [
+            "--diagnose",
+            scene.to_str().unwrap(),
+            student.to_str().unwrap(),
+        ];
+        let (status, json) = report(&args);
+        assert_eq!(status, 1);
+        for found in json["diagnosis"].as_array().unwrap() {
+            let agreement = found["agreement_after"].as_f64().unwrap();
+            assert!(
+                found.get("subject").is_none() || agreement < 0.99,
+                "{name}: {found}"
+            );
+        }
+        let text = stdout(&compare(&args));
+        assert!(!text.contains("your image agrees"), "{name}: {text}");
+    }
+}

@@ -219,7 +219,7 @@ fn the_readme_s_compare_example_is_what_the_program_prints() {
         .find("When no variant explains it, trace a pixel")
         .unwrap();
     let blocks = fenced_blocks(&readme[start..end], "text");
-    assert_eq!(blocks.len(), 2, "{blocks:?}");
+    assert_eq!(blocks.len(), 3, "{blocks:?}");
     let command = "legacy-rt compare --diagnose --diff diff.png examples/shadows.txt mine.ppm\n";
     assert_eq!(blocks[0], command);
     // The student's image: the scene without shadow rays, 160x120, as the README's trace
@@ -245,6 +245,21 @@ fn the_readme_s_compare_example_is_what_the_program_prints() {
             "README: `{line}` is not in the report:\n{report}"
         );
     }
+    // The student's own mistake: the small white sphere (line 25) casts no shadow.
+    let output = super::common::run(
+        &["160", "120", "--variant", "no-shadow@25", "-o", mine],
+        &scene,
+    );
+    assert!(output.status.success());
+    let args = ["compare", "--diagnose", "examples/shadows.txt", mine];
+    let output = super::common::run(&args, b"");
+    assert_eq!(output.status.code(), Some(1));
+    let report = String::from_utf8(output.stdout).unwrap();
+    assert!(
+        report.ends_with(&blocks[2]),
+        "README:\n{}\nreport:\n{report}",
+        blocks[2]
+    );
 }
 
 /// Every command of the README that a reader may copy names the repository's own files:
