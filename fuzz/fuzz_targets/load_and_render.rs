@@ -22,6 +22,6 @@ fuzz_target!(|data: &[u8]| {
     };
     assert!(image.pixels == render(&scene, &linear, |_| {}).pixels);
     // compare's reference, rendered with its margins, is the same image.
-    let (reference, fragility, _) = render_with_margins(&scene, &options, compare::F32);
-    assert!(reference.pixels == image.pixels && fragility.len() == image.pixels.len());
+    let (reference, marks) = render_with_margins(&scene, &options, compare::F32);
+    assert!(reference.pixels == image.pixels && marks.len() == image.pixels.len());
 });

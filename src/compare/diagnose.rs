@@ -93,12 +93,6 @@ struct Tried {
     pixel: Option<usize>,
 }
 
-/// Every `n`-th of `indices`, about `count` of them, spread over the image.
-fn spread(indices: &[usize], count: usize) -> Vec<usize> {
-    let step = indices.len().div_ceil(count.max(1)).max(1);
-    indices.iter().step_by(step).copied().collect()
-}
-
 /// The variants that explain `student` better than `reference` (the image of `options`,
 /// at `options`' size), best first; the best one together with another first where the
 /// pair explains it better still. Empty when the images agree within `levels`
@@ -127,9 +121,18 @@ pub fn diagnose_and_focus(
         return (Vec::new(), None);
     }
     let agrees = |i: usize, bytes: [u8; 3]| pixel_difference(bytes, student.pixels[i]) <= levels;
-    let (differing, agreeing): (Vec<usize>, Vec<usize>) =
-        (0..reference.pixels.len()).partition(|&i| !agrees(i, reference.pixels[i]));
-    let samples = SAMPLE.map(|n| (spread(&differing, n), spread(&agreeing, n)));
+    // The samples, every n-th differing and agreeing pixel, without a list of them all.
+    let differs = |i: usize| !agrees(i, reference.pixels[i]);
+    let pixels = reference.pixels.len();
+    let differing = (0..pixels).filter(|&i| differs(i)).count();
+    let agreeing = pixels - differing;
+    let samples = SAMPLE.map(|n| {
+        let every = |count: usize| count.div_ceil(n.max(1)).max(1);
+        let (d, a) = (every(differing), every(agreeing));
+        let d: Vec<usize> = (0..pixels).filter(|&i| differs(i)).step_by(d).collect();
+        let a: Vec<usize> = (0..pixels).filter(|&i| !differs(i)).step_by(a).collect();
+        (d, a)
+    });
     let total = reference.pixels.len() as f64;
     // The agreement a candidate would have, from its bytes on sample `k`; and a pixel it
     // explains.
@@ -148,8 +151,8 @@ pub fn diagnose_and_focus(
             .filter(|&(&i, &b)| agrees(i, b))
             .count();
         let share = |n: usize, of: usize| n as f64 / of.max(1) as f64;
-        let after = differing.len() as f64 * share(fixed.len(), sample_d.len())
-            + agreeing.len() as f64 * share(kept, sample_a.len());
+        let after = differing as f64 * share(fixed.len(), sample_d.len())
+            + agreeing as f64 * share(kept, sample_a.len());
         Some((after / total, fixed.first().copied()))
     };
     let exact = |variants: &[Variant]| -> Option<f64> {

@@ -64,11 +64,9 @@ impl Default for Tolerance {
 pub struct Reference {
     /// The reference's pixels.
     pub image: Image,
-    /// Per pixel, what a correct tracer may get otherwise; empty for an image given as
-    /// the reference (then no pixel is excused).
-    pub fragility: Vec<render::Fragility>,
-    /// Per pixel, the object the camera ray hits first; empty for an image.
-    pub hits: Vec<render::FirstHit>,
+    /// Per pixel, what a correct tracer may get otherwise and the object the camera ray
+    /// hits first; empty for an image given as the reference (then no pixel is excused).
+    pub marks: Vec<render::Mark>,
 }
 
 impl Reference {
@@ -76,14 +74,13 @@ impl Reference {
     pub fn image(image: Image) -> Reference {
         Reference {
             image,
-            fragility: Vec::new(),
-            hits: Vec::new(),
+            marks: Vec::new(),
         }
     }
 
     /// Pixel `i`'s fragility (none for an image).
     pub fn fragility(&self, i: usize) -> render::Fragility {
-        self.fragility.get(i).copied().unwrap_or_default()
+        self.marks.get(i).map(|m| m.fragility()).unwrap_or_default()
     }
 }
 
@@ -284,12 +281,8 @@ pub fn reference(scene: &Scene, options: &Options, student: &Image, precision: f
         height: student.height,
         ..*options
     };
-    let (image, fragility, hits) = render::render_with_margins(scene, &options, precision);
-    Reference {
-        image,
-        fragility,
-        hits,
-    }
+    let (image, marks) = render::render_with_margins(scene, &options, precision);
+    Reference { image, marks }
 }
 
 /// Compares `student` with `reference`; with the scene (and the options the reference
@@ -315,7 +308,11 @@ pub fn report(
     };
     let differing_pixels = (0..pixels).filter(|&i| beyond(i)).count();
     let differing_fragile_pixels = (0..pixels).filter(|&i| beyond(i) && excused(i)).count();
-    let fragile_pixels = rendered.fragility.iter().filter(|f| f.any()).count();
+    let fragile_pixels = rendered
+        .marks
+        .iter()
+        .filter(|m| m.fragility().any())
+        .count();
     let differing_fraction = differing_pixels as f64 / pixels.max(1) as f64;
     let channel_sum: u64 = (reference.pixels.iter().zip(&student.pixels))
         .flat_map(|(a, b)| (0..3).map(|c| u64::from(a[c].abs_diff(b[c]))))
@@ -327,8 +324,8 @@ pub fn report(
         false => Verdict::Differ,
     };
     let groups = match scene {
-        Some((scene, _)) if differing_pixels > 0 && rendered.hits.len() == pixels => {
-            group(scene, &rendered.hits, (0..pixels).filter(|&i| beyond(i)))
+        Some((scene, _)) if differing_pixels > 0 && rendered.marks.len() == pixels => {
+            group(scene, &rendered.marks, (0..pixels).filter(|&i| beyond(i)))
         }
         _ => Vec::new(),
     };
@@ -339,13 +336,17 @@ pub fn report(
         let (a, b) = (reference.pixels[i], student.pixels[i]);
         (0..3).map(|c| u16::from(a[c].abs_diff(b[c]))).sum()
     };
+    // Kept in a heap of the `worst` first so far, whose top is the last of them: memory
+    // for the list, not for every differing pixel.
     let key = |i: usize| (excused(i), std::cmp::Reverse((differences[i], sum(i))), i);
-    let mut order: Vec<_> = (0..pixels).filter(|&i| beyond(i)).map(key).collect();
-    if order.len() > settings.worst {
-        order.select_nth_unstable(settings.worst);
-        order.truncate(settings.worst);
+    let mut kept = std::collections::BinaryHeap::with_capacity(settings.worst.min(pixels) + 1);
+    for i in (0..pixels).filter(|&i| beyond(i)) {
+        kept.push(key(i));
+        if kept.len() > settings.worst {
+            kept.pop();
+        }
     }
-    order.sort_unstable();
+    let order = kept.into_sorted_vec();
     let worst = (order.iter().map(|&(_, _, i)| i))
         .map(|i| Worst {
             x: i % width,
@@ -391,17 +392,17 @@ pub fn report(
     })
 }
 
-/// The pixels `differing` (output indices) counted by the object `hits` names there.
+/// The pixels `differing` (output indices) counted by the object `marks` name there.
 fn group(
     scene: &Scene,
-    hits: &[render::FirstHit],
+    marks: &[render::Mark],
     differing: impl Iterator<Item = usize>,
 ) -> Vec<Group> {
     let mut counts = vec![0usize; scene.objects.len() + 1];
     let background = scene.objects.len();
     let mut total = 0;
     for i in differing {
-        counts[hits[i].index().unwrap_or(background)] += 1;
+        counts[marks[i].first().index().unwrap_or(background)] += 1;
         total += 1;
     }
     let mut groups: Vec<Group> = (counts.iter().enumerate())

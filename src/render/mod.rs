@@ -423,14 +423,39 @@ impl Fragility {
 /// scene of a few lights: the byte's margin is measured against that many.
 const COLOUR_ROUNDINGS: f64 = 16.0;
 
-/// The reference image with, per pixel, how sure it is at `precision` and the object its
-/// camera ray hits first: what `compare` needs, in one render with a recorder of margins
-/// (src/render/margins.rs). The image is the plain render's, byte for byte.
-pub fn render_with_margins(
-    scene: &Scene,
-    options: &Options,
-    precision: f64,
-) -> (Image, Vec<Fragility>, Vec<FirstHit>) {
+/// What `compare` keeps of each pixel of the reference: its bytes, how sure it is, and
+/// the object its camera ray hits first, in 8 bytes (a 4096x4096 reference keeps 128 MB
+/// of them).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Mark(u64);
+
+impl Mark {
+    fn new(bytes: [u8; 3], fragility: Fragility, first: FirstHit) -> Mark {
+        let [r, g, b] = bytes.map(u64::from);
+        let first = first.0.map_or(0, |n| u64::from(n.get()));
+        Mark(r | g << 8 | b << 16 | u64::from(fragility.0) << 24 | first << 32)
+    }
+
+    /// The pixel's bytes.
+    pub fn bytes(self) -> [u8; 3] {
+        [self.0 as u8, (self.0 >> 8) as u8, (self.0 >> 16) as u8]
+    }
+
+    /// What a correct tracer may get otherwise here.
+    pub fn fragility(self) -> Fragility {
+        Fragility((self.0 >> 24) as u8)
+    }
+
+    /// The object the camera ray hits first.
+    pub fn first(self) -> FirstHit {
+        FirstHit(std::num::NonZeroU32::new((self.0 >> 32) as u32))
+    }
+}
+
+/// The reference image with each pixel's [`Mark`] at `precision`: what `compare` needs,
+/// in one render with a recorder of margins (src/render/margins.rs). The image is the
+/// plain render's, byte for byte.
+pub fn render_with_margins(scene: &Scene, options: &Options, precision: f64) -> (Image, Vec<Mark>) {
     let setup = Setup::new(scene, options);
     // As in `render`: the rules as written are constants to the tracer.
     let pixels = match setup.rules.as_written() {
@@ -445,27 +470,25 @@ pub fn render_with_margins(
     let image = Image {
         width: options.width,
         height: options.height,
-        pixels: pixels.iter().map(|p| p.0).collect(),
+        pixels: pixels.iter().map(|m| m.bytes()).collect(),
     };
-    let fragility = pixels.iter().map(|p| p.1).collect();
-    let hits = pixels.iter().map(|p| p.2).collect();
-    (image, fragility, hits)
+    (image, pixels)
 }
 
-/// Every pixel's bytes, fragility at `precision` and first hit, in output order.
+/// Every pixel's bytes and mark at `precision`, in output order.
 fn margins_of<B: Rulebook>(
     setup: &Setup,
     tracer: Tracer<B>,
     options: &Options,
     precision: f64,
-) -> Vec<([u8; 3], Fragility, FirstHit)> {
+) -> Vec<Mark> {
     let sizes = margins::Sizes::new(&setup.scene, options.max_dist, tracer.screen());
     let background = setup.rules.bytes(DVec3::ZERO);
     with_kernel!(options.kernel, K => {
-        let per_pixel = |x: usize, y: usize| -> ([u8; 3], Fragility, FirstHit) {
+        let per_pixel = |x: usize, y: usize| -> Mark {
             let tile = tracer.objects.tile(x, y);
             if tile.is_some_and(|tile| tile.objects.is_empty()) {
-                return (background, Fragility::default(), FirstHit::default());
+                return Mark::new(background, Fragility::default(), FirstHit::default());
             }
             let mut rec = margins::Margins::new(&sizes);
             let colour = match setup.camera.ray(x, y) {
@@ -479,7 +502,7 @@ fn margins_of<B: Rulebook>(
             let bytes = colour.to_array().map(|c| setup.rules.bytes.margin(c) / error);
             let fragility = Fragility::of(rec.least, bytes, precision);
             let first = FirstHit::of(rec.first.flatten());
-            (setup.rules.bytes(colour), fragility, first)
+            Mark::new(setup.rules.bytes(colour), fragility, first)
         };
         each_pixel(setup, options, per_pixel, &mut |_| {})
     })
