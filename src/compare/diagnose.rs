@@ -207,12 +207,15 @@ pub fn diagnose_and_focus(
             found.push(Tried { agreement, ..tried });
         }
     }
-    // MAX_DIST can change only the pixels whose path reflects, and is estimated (at the
-    // cost of a render) only where they differ and nothing yet explains them.
-    let reflected = paths.iter().any(|path| path.reflected);
-    let explained = found.iter().any(|t| t.agreement >= EXPLAINED);
-    if reflected
-        && !explained
+    // MAX_DIST can change only the pixels whose path reflects: it is estimated (at the
+    // cost of a render) only where fixing every differing one of them would agree better
+    // than the best found so far.
+    let reflected = paths.iter().filter(|path| path.reflected).count();
+    let at_most = before + (1.0 - before) * reflected as f64 / paths.len().max(1) as f64;
+    let best = found.iter().map(|t| t.agreement).fold(before, f64::max);
+    if reflected > 0
+        && at_most > best
+        && best < EXPLAINED
         && let Some((d, range, agreement)) = estimate_max_dist(scene, options, student, levels)
         && agreement > before
     {
