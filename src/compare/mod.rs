@@ -341,7 +341,11 @@ pub fn report(
     let key = |i: usize| (excused(i), std::cmp::Reverse((differences[i], sum(i))), i);
     let mut kept = std::collections::BinaryHeap::with_capacity(settings.worst.min(pixels) + 1);
     for i in (0..pixels).filter(|&i| beyond(i)) {
-        kept.push(key(i));
+        let key = key(i);
+        if kept.len() == settings.worst && kept.peek().is_none_or(|last| key >= *last) {
+            continue;
+        }
+        kept.push(key);
         if kept.len() > settings.worst {
             kept.pop();
         }

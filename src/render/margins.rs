@@ -28,7 +28,9 @@
 //! decisions count when it wins, or when what it decides lies no further than the winner
 //! (a miss that nearly hit in front of it); a shadow is as sure as its surest blocker,
 //! and an unblocked light as its nearest miss. The queries go on testing objects a little
-//! past their answer for this recorder ([`super::record::MARGIN_REACH`]).
+//! past their answer for this recorder ([`Recorder::reach`]): 64 times the precision, so
+//! that what lies that close behind the answer, measured on a point of size up to 64
+//! times its distance, is heard (at most [`MARGIN_REACH`]).
 
 use super::record::{Event, LightStep, MARGIN_REACH, Recorder};
 use super::shading::{PatternNote, Screen};
@@ -43,10 +45,18 @@ pub(crate) struct Sizes<'a> {
     anchor: Vec<f64>,
     max_dist: f64,
     screen: Screen,
+    /// How far past their answer the queries test objects ([`Recorder::reach`]); margins
+    /// beyond it are not kept.
+    reach: f64,
 }
 
 impl<'a> Sizes<'a> {
-    pub(crate) fn new(scene: &'a Scene, max_dist: f64, screen: Screen) -> Sizes<'a> {
+    pub(crate) fn new(
+        scene: &'a Scene,
+        max_dist: f64,
+        screen: Screen,
+        precision: f64,
+    ) -> Sizes<'a> {
         let anchor = (scene.objects.iter())
             .map(|object| anchor(&object.shape).abs().max_element())
             .collect();
@@ -55,6 +65,7 @@ impl<'a> Sizes<'a> {
             anchor,
             max_dist,
             screen,
+            reach: (64.0 * precision).min(MARGIN_REACH),
         }
     }
 }
@@ -159,8 +170,12 @@ impl<'s, 'a> Margins<'s, 'a> {
     }
 
     /// The smallest margin of `object`'s decisions in `notes`, and the t where it lies.
+    #[inline]
     fn notes_margin(&self, object: usize, notes: &[HitNote]) -> (f64, f64) {
         let shape = &self.sizes.scene.objects[object].shape;
+        // The size of a point at t on the object's equation.
+        let fixed = self.base + self.sizes.anchor[object];
+        let size = |t: f64| fixed + t.abs();
         let mut least = (f64::INFINITY, f64::INFINITY);
         let mut plane_t = f64::INFINITY;
         let mut take = |margin: f64, t: f64| {
@@ -174,10 +189,10 @@ impl<'s, 'a> Margins<'s, 'a> {
                     relative, vertex, ..
                 } => take(relative, vertex),
                 HitNote::Nearer { t: Some(t) } | HitNote::QuadricRoot { t, .. } => {
-                    take(t.abs() / self.size(object, t), t)
+                    take(t.abs() / size(t), t)
                 }
                 HitNote::Root { t, y, .. } => {
-                    let size = self.size(object, t);
+                    let size = size(t);
                     take(t.abs() / size, t);
                     if let Some((low, high)) = y_bounds(shape) {
                         take((y - low).abs().min((y - high).abs()) / size, t);
@@ -185,7 +200,7 @@ impl<'s, 'a> Margins<'s, 'a> {
                 }
                 HitNote::Plane { t, z, .. } => {
                     plane_t = t;
-                    let size = self.size(object, t);
+                    let size = size(t);
                     take(t.abs() / size, t);
                     let z_rule = match shape {
                         Shape::Plane(plane) => plane.z_rule,
@@ -202,7 +217,7 @@ impl<'s, 'a> Margins<'s, 'a> {
                         let (w, h) = (rectangle.size.x, rectangle.size.y);
                         let edge =
                             (q.x.abs().min((q.x - w).abs())).min(q.y.abs().min((q.y - h).abs()));
-                        take(edge / self.size(object, plane_t), plane_t);
+                        take(edge / size(plane_t), plane_t);
                     }
                 }
                 HitNote::Nearer { t: None } | HitNote::NoRealRoot | HitNote::Parallel => {}
@@ -212,6 +227,7 @@ impl<'s, 'a> Margins<'s, 'a> {
     }
 
     /// One object's test along the current ray.
+    #[inline]
     fn test(&mut self, object: usize, t: Option<f64>, notes: &[HitNote]) {
         let (margin, at) = self.notes_margin(object, notes);
         let shadow = self.light_dist.is_finite();
@@ -224,7 +240,7 @@ impl<'s, 'a> Margins<'s, 'a> {
                     self.surest_blocker = self.surest_blocker.max(margin.min(edge));
                 }
                 _ => {
-                    let mut miss = if at < dist * (1.0 + MARGIN_REACH) {
+                    let mut miss = if at < dist * (1.0 + self.sizes.reach) {
                         margin
                     } else {
                         f64::INFINITY
@@ -237,7 +253,7 @@ impl<'s, 'a> Margins<'s, 'a> {
             }
             return;
         }
-        if margin < MARGIN_REACH {
+        if margin < self.sizes.reach {
             self.near.push((object, at, margin));
         }
         if let Some(t) = hit {
@@ -264,7 +280,7 @@ impl<'s, 'a> Margins<'s, 'a> {
         let winner = hit.map(|(object, _)| object);
         let mut least = f64::INFINITY;
         for &(object, at, margin) in &self.near {
-            if Some(object) == winner || at <= best * (1.0 + MARGIN_REACH) {
+            if Some(object) == winner || at <= best * (1.0 + self.sizes.reach) {
                 least = least.min(margin);
             }
         }
@@ -400,7 +416,11 @@ impl Recorder for Margins<'_, '_> {
     }
 
     fn settled(&self) -> bool {
-        self.surest_blocker >= MARGIN_REACH
+        self.surest_blocker >= self.sizes.reach
+    }
+
+    fn reach(&self) -> f64 {
+        self.sizes.reach
     }
 }
 
@@ -422,7 +442,12 @@ mod tests {
         let options = Options::new(3, 3);
         let setup = Setup::new(scene, &options);
         let tracer = setup.tracer(&options);
-        let sizes = Sizes::new(&setup.scene, options.max_dist, tracer.screen());
+        let sizes = Sizes::new(
+            &setup.scene,
+            options.max_dist,
+            tracer.screen(),
+            MARGIN_REACH,
+        );
         let ray = setup.camera.ray(1, 1).expect("a ray");
         assert_eq!((ray.base, ray.dir), (DVec3::new(0.0, 0.0, 3.0), -DVec3::Z));
         let mut rec = Margins::new(&sizes);

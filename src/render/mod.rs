@@ -482,7 +482,7 @@ fn margins_of<B: Rulebook>(
     options: &Options,
     precision: f64,
 ) -> Vec<Mark> {
-    let sizes = margins::Sizes::new(&setup.scene, options.max_dist, tracer.screen());
+    let sizes = margins::Sizes::new(&setup.scene, options.max_dist, tracer.screen(), precision);
     let background = setup.rules.bytes(DVec3::ZERO);
     with_kernel!(options.kernel, K => {
         let per_pixel = |x: usize, y: usize| -> Mark {

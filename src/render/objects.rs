@@ -17,7 +17,7 @@
 //! (`with_kernel!`), so that no object test pays for the choice.
 
 use super::bvh::{Boxes, Bvh, beats};
-use super::record::{Event, LightStep, MARGIN_REACH, Recorder, Skip};
+use super::record::{Event, LightStep, Recorder, Skip};
 use super::tiles::{Tile, Tiles};
 use super::variant::Rulebook;
 use super::{Camera, Options};
@@ -137,7 +137,7 @@ impl<'a, B: Rulebook> Objects<'a, B> {
             false => test_and_record::<K, R>(index, &objects[index], ray, rec),
         };
         // A recorder of margins is told of the objects that come near the best hit too.
-        let slack = reach::<R>();
+        let slack = 1.0 + rec.reach();
         let mut best: Option<(usize, f64)> = None;
         let tile = match from {
             From::Eye(tile) => tile,
@@ -191,7 +191,7 @@ impl<'a, B: Rulebook> Objects<'a, B> {
             |index: usize, t: f64| t > least && t < dist && self.boxes.admits(index, ray, t);
         // A recorder of margins hears of blockers until one is sure: the shadow is as
         // sure as the surest of them.
-        let every_blocker = reach::<R>() > 1.0;
+        let every_blocker = margins::<R>();
         let mut blocker = None;
         let mut test = |index: usize, rec: &mut R| {
             if let Some(t) = test_and_record::<K, R>(index, &objects[index], ray, rec)
@@ -203,7 +203,7 @@ impl<'a, B: Rulebook> Objects<'a, B> {
             blocker.is_some() && (!every_blocker || rec.settled())
         };
         if let Some(bvh) = self.bvh.as_ref().filter(|_| !R::EVERY_OBJECT) {
-            let limit = dist * reach::<R>();
+            let limit = dist * (1.0 + rec.reach());
             bvh.any(ray, limit, |index| !out(index) && test(index, rec));
         } else {
             in_file_order(objects.len(), skip, out, rec, test);
@@ -238,15 +238,11 @@ fn in_file_order<R: Recorder>(
     }
 }
 
-/// How far past the best hit (or the light) a query goes on testing, as a factor: 1 but
-/// for a recorder of margins, which must hear of every object that comes within
-/// [`MARGIN_REACH`] of the decision.
+/// Whether `R` is a recorder of margins: the shapes' decisions wanted where the tiles and
+/// the hierarchy choose the objects (`Recorder::NOTES` without `EVERY_OBJECT`).
 #[inline(always)]
-fn reach<R: Recorder>() -> f64 {
-    match R::NOTES && !R::EVERY_OBJECT {
-        true => 1.0 + MARGIN_REACH,
-        false => 1.0,
-    }
+fn margins<R: Recorder>() -> bool {
+    R::NOTES && !R::EVERY_OBJECT
 }
 
 /// Why an object was not tested: the ray leaves it, or a variant took it out.
@@ -272,11 +268,10 @@ fn test_and_record<K: Kernel, R: Recorder>(
     // A recorder of margins is told how close the ray came to touching a quadric. Where
     // it clearly misses and the kernel's quick test agrees, the recorder (whose margins
     // reach no further) is not told, and the kernel's notes are not taken.
-    if reach::<R>() > 1.0
+    if margins::<R>()
         && let Some((a, b, c)) = object.shape.quadratic(ray)
     {
-        if clearly_no_root(a, b, c, MARGIN_REACH)
-            && object.shape.hit_by::<K>(ray, &mut ()).is_none()
+        if clearly_no_root(a, b, c, rec.reach()) && object.shape.hit_by::<K>(ray, &mut ()).is_none()
         {
             return None;
         }

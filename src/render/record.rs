@@ -24,8 +24,16 @@ pub(crate) trait Recorder {
     /// Whether the shapes' decisions are wanted for every object tested
     /// ([`Recorder::tested`]), also where the tiles and the hierarchy choose which: the
     /// margins of `compare`'s fragile pixels. The queries then go on testing objects
-    /// within [`MARGIN_REACH`] of their answer.
+    /// within [`Recorder::reach`] of their answer.
     const NOTES: bool = Self::EVERY_OBJECT;
+
+    /// How far past its answer (the best hit, or the light) a query goes on testing
+    /// objects for this recorder, as a share of the distance: 0 but for a recorder of
+    /// margins, which must hear of every object that comes that close to deciding
+    /// otherwise (at most [`MARGIN_REACH`]).
+    fn reach(&self) -> f64 {
+        0.0
+    }
 
     /// Takes one event; `event` is called only by a recorder that keeps it.
     fn record(&mut self, event: impl FnOnce() -> Event);
@@ -47,9 +55,8 @@ pub(crate) trait Recorder {
     }
 }
 
-/// How far beyond its answer a query tests objects for a recorder of margins, as a share
-/// of the distance: the largest precision `compare` takes (`--precision`), so that an
-/// object whose hit falls that close behind the best one, or behind the light, is seen.
+/// The largest reach of a recorder of margins, as a share of the distance: the largest
+/// precision `compare` takes (`--precision`).
 pub(crate) const MARGIN_REACH: f64 = 1e-2;
 
 impl Recorder for () {
