@@ -25,12 +25,30 @@ if [ "$(wasm-bindgen --version 2>/dev/null)" != "wasm-bindgen $version" ]; then
     cargo install wasm-bindgen-cli --version "$version"
 fi
 
-cargo build --release --locked --target wasm32-unknown-unknown --manifest-path wasm/Cargo.toml
+# Where cargo puts the .wasm depends on CARGO_TARGET_DIR and the configuration: ask it,
+# from the build's own list of artifacts.
+wasm=$(cargo build --release --locked --target wasm32-unknown-unknown \
+  --manifest-path wasm/Cargo.toml --message-format=json-render-diagnostics |
+  python3 -c '
+import json, sys
+for line in sys.stdin:
+    try:
+        message = json.loads(line)
+    except ValueError:
+        continue
+    if message.get("reason") == "compiler-artifact":
+        for name in message.get("filenames", []):
+            if name.endswith(".wasm"):
+                print(name)
+' | tail -n 1)
+if [ -z "$wasm" ] || [ ! -f "$wasm" ]; then
+  echo "build.sh: cargo built no .wasm for web/wasm" >&2
+  exit 1
+fi
 
 rm -rf dist
 mkdir -p dist/examples/textures
-wasm-bindgen --target web --no-typescript --out-dir dist/pkg \
-  wasm/target/wasm32-unknown-unknown/release/legacy_rt_web.wasm
+wasm-bindgen --target web --no-typescript --out-dir dist/pkg "$wasm"
 cp index.html style.css app.js worker.js dist/
 cp ../examples/*.txt dist/examples/
 cp ../examples/textures/*.ppm dist/examples/textures/

@@ -19,7 +19,9 @@ if ! command -v chromium >/dev/null 2>&1; then
   fi
 fi
 (cd web && npm ci --no-audit --no-fund --loglevel=error)
-web/build.sh
+# Built with a target directory of its own, as a user's CARGO_TARGET_DIR may be: the
+# script asks cargo where the .wasm went (it once read a fixed path).
+CARGO_TARGET_DIR="$web/wasm/target/elsewhere" web/build.sh
 # The command line the page must agree with, target/debug/legacy-rt: built as
 # `cargo test` builds it (the same features), so that after `cargo test` this is no work.
 cargo test --locked --no-run
