@@ -184,14 +184,23 @@ async function update() {
     if ((!state.full || state.full.ms > PREVIEW_ABOVE_MS) && width >= 64) {
       const w = Math.max(2, Math.round(width / 4));
       const h = height ? Math.max(2, Math.round(height / 4)) : 0;
-      const preview = await renderer.call('render', { text, width: w, height: h, choices: chosen });
+      // A preview that fails is skipped: the full render's error names what was typed
+      // (a width too large names that width, not the preview's quarter of it).
+      const preview = await renderer
+        .call('render', { text, width: w, height: h, choices: chosen })
+        .catch((error) => {
+          if (error.cancelled) throw error;
+          return null;
+        });
       if (!current()) return;
-      showError(null);
-      draw($('image'), preview.rgba, preview.width, preview.height);
-      shown();
-      displayWidth(width);
-      $('image').classList.remove('stale');
-      $('status').textContent = `preview at ${preview.width}x${preview.height}; rendering ${width} wide…`;
+      if (preview) {
+        showError(null);
+        draw($('image'), preview.rgba, preview.width, preview.height);
+        shown();
+        displayWidth(width);
+        $('image').classList.remove('stale');
+        $('status').textContent = `preview at ${preview.width}x${preview.height}; rendering ${width} wide…`;
+      }
     }
     const image = await renderer.call('render', { text, width, height, choices: chosen });
     if (!current()) return;

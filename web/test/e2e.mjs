@@ -170,6 +170,22 @@ async function showsTheError(page) {
   console.log(`ok 3 - an error typed on line ${line} is the command line's, line ${line} marked`);
 }
 
+// 3b. A size too large is named as typed, not as the preview's quarter of it.
+async function namesTheSizeTyped(page) {
+  await page.fill('#height', '');
+  assert.equal(await setAndRender(page, '#width', '99999'), 'error');
+  // A scene just opened is rendered as a quarter-size preview first.
+  assert.equal(await openExample(page, 'spheres.txt'), 'error');
+  const cli = legacyRt(['99999'], { input: readFileSync(join(top, 'examples', 'spheres.txt')) });
+  assert.notEqual(cli.status, 0);
+  const shown = await page.textContent('#error-text');
+  assert.match(shown, /99999x/, shown);
+  assert.doesNotMatch(shown, /25000x/, shown);
+  await page.fill('#height', '90');
+  assert.equal(await setAndRender(page, '#width', '120'), 'done');
+  console.log(`ok 3 - a width of 99999 is named as typed: ${shown.split(' is ')[0]}`);
+}
+
 // 4. A texture the user has not added is the command line's missing-file error; added (a
 // browser has no folders: by its file name), the scene renders as the command line's.
 async function takesAddedTextures(page) {
@@ -345,6 +361,7 @@ async function main() {
     await rendersAsTheCommandLine(page, 'quadrics_gallery.txt', 240, 180);
     await cancelsALongRender(page);
     await showsTheError(page);
+    await namesTheSizeTyped(page);
     await takesAddedTextures(page);
     await tracesAClickedPixel(page, 'spheres.txt');
     await namesTheMistake(page, 'spheres.txt', 'square-falloff');
