@@ -75,6 +75,7 @@ const renderer = new Renderer();
 
 const state = {
   sceneName: 'scene.txt',
+  openedText: null, // the text as the scene file was opened
   generation: 0, // bumped by every edit: answers to an older one are dropped
   full: null, // the last full-size render: { width, height, ms }
   picked: null, // the traced pixel: { x, row } in the full-size image
@@ -248,6 +249,13 @@ function soon() {
 }
 
 editor.addEventListener('input', () => {
+  // Typed or pasted over: no longer the file opened, whose name the commands, the report
+  // and the downloads would otherwise carry.
+  if (editor.value !== state.openedText && state.sceneName !== YOUR_SCENE) {
+    state.sceneName = YOUR_SCENE;
+    $('example').value = '';
+    $('scene-note').hidden = false;
+  }
   drawGutter();
   soon();
 });
@@ -404,8 +412,13 @@ editor.addEventListener('drop', async (event) => {
 
 // ---- Scenes, examples and textures.
 
+// The name the commands give a scene typed or pasted into the editor.
+const YOUR_SCENE = 'scene.txt';
+
 function openScene(name, text) {
   state.sceneName = name;
+  state.openedText = text;
+  $('scene-note').hidden = true;
   forgetPixel();
   state.full = null;
   state.openedAt = performance.now();

@@ -186,6 +186,27 @@ async function namesTheSizeTyped(page) {
   console.log(`ok 3 - a width of 99999 is named as typed: ${shown.split(' is ')[0]}`);
 }
 
+// 3c. A scene pasted over an example is no longer named as the example: not by the
+// selector, the trace command or the downloads.
+async function namesAPastedScene(page) {
+  assert.equal(await openExample(page, 'spheres.txt'), 'done');
+  const text = readFileSync(join(top, 'examples', 'shadows.txt'), 'utf8');
+  await page.evaluate(() => { document.body.dataset.state = 'edited'; });
+  await page.fill('#scene', text);
+  assert.equal(await settled(page), 'done');
+  assert.equal(await page.inputValue('#example'), '');
+  assert.equal(await page.isVisible('#scene-note'), true);
+  const box = await page.locator('#image').boundingBox();
+  await page.evaluate(() => { document.body.dataset.state = 'edited'; });
+  await page.click('#image', { position: { x: box.width * 0.5, y: box.height * 0.5 } });
+  assert.equal(await settled(page), 'done');
+  const command = await page.textContent('#trace-command');
+  assert.match(command, /< scene\.txt$/, command);
+  const [download] = await Promise.all([page.waitForEvent('download'), page.click('#download-ppm')]);
+  assert.equal(download.suggestedFilename(), 'scene.ppm');
+  console.log(`ok 3 - a scene pasted over spheres.txt is named scene.txt: ${command}`);
+}
+
 // 4. A texture the user has not added is the command line's missing-file error; added (a
 // browser has no folders: by its file name), the scene renders as the command line's.
 async function takesAddedTextures(page) {
@@ -362,6 +383,7 @@ async function main() {
     await cancelsALongRender(page);
     await showsTheError(page);
     await namesTheSizeTyped(page);
+    await namesAPastedScene(page);
     await takesAddedTextures(page);
     await tracesAClickedPixel(page, 'spheres.txt');
     await namesTheMistake(page, 'spheres.txt', 'square-falloff');
