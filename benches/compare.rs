@@ -35,11 +35,6 @@ fn main() {
         "{:<22} {:>10} {:>14} {:>7}",
         "scene", "plain ms", "margins ms", "ratio"
     );
-    let time = |f: &dyn Fn()| {
-        let start = Instant::now();
-        f();
-        start.elapsed().as_secs_f64()
-    };
     for path in scenes {
         let name = path.file_name().unwrap().to_string_lossy().to_string();
         let Ok(text) = std::fs::read_to_string(&path) else {
@@ -53,8 +48,9 @@ fn main() {
         let margins = || {
             std::hint::black_box(render_with_margins(&scene, &options, compare::F32));
         };
-        let (mut a, mut b): (Vec<f64>, Vec<f64>) =
-            (0..runs).map(|_| (time(&plain), time(&margins))).unzip();
+        let (mut a, mut b): (Vec<f64>, Vec<f64>) = (0..runs)
+            .map(|_| (seconds(&plain), seconds(&margins)))
+            .unzip();
         a.sort_by(f64::total_cmp);
         b.sort_by(f64::total_cmp);
         let (a, b) = (a[runs / 2], b[runs / 2]);
@@ -111,8 +107,9 @@ fn diagnose(runs: usize, root: &Path) {
                 let report = compare::report(&reference, &student, with_scene, &settings);
                 std::hint::black_box(report.expect("one size"));
             };
-            let (mut a, mut b): (Vec<f64>, Vec<f64>) =
-                (0..runs).map(|_| (cpu(&plain), cpu(&diagnosed))).unzip();
+            let (mut a, mut b): (Vec<f64>, Vec<f64>) = (0..runs)
+                .map(|_| (seconds(&plain), seconds(&diagnosed)))
+                .unzip();
             a.sort_by(f64::total_cmp);
             b.sort_by(f64::total_cmp);
             let (a, b) = (a[runs / 2], b[runs / 2]);
@@ -128,8 +125,10 @@ fn diagnose(runs: usize, root: &Path) {
     }
 }
 
-/// The wall time of `f` on this thread (single-threaded work: its CPU time).
-fn cpu(f: &dyn Fn()) -> f64 {
+/// The time `f` takes on this thread, in seconds: wall-clock time, which for work on one
+/// thread is its CPU time on a quiet machine (alternating the two programs compared puts
+/// a busy machine's drift on both).
+fn seconds(f: &dyn Fn()) -> f64 {
     let start = Instant::now();
     f();
     start.elapsed().as_secs_f64()

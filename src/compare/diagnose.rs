@@ -28,10 +28,7 @@ const SAMPLE: [usize; 2] = [256, 1024];
 /// How many candidates go on from the small sample to the large one.
 const SHORTLIST: usize = 8;
 
-/// How many candidates are rendered whole at most, best estimate first.
-const RENDERED: usize = 1;
-
-/// An agreement that explains the image: no further candidate is rendered whole.
+/// An agreement that explains the image: MAX_DIST is not estimated beyond it.
 const EXPLAINED: f64 = 0.999;
 
 /// How many of the objects and of the lights most involved in the differences are
@@ -126,12 +123,14 @@ pub fn diagnose_and_focus(
     let pixels = reference.pixels.len();
     let differing = (0..pixels).filter(|&i| differs(i)).count();
     let agreeing = pixels - differing;
+    // Each sample: its differing pixels, then its agreeing ones, and where they start.
     let samples = SAMPLE.map(|n| {
         let every = |count: usize| count.div_ceil(n.max(1)).max(1);
         let (d, a) = (every(differing), every(agreeing));
-        let d: Vec<usize> = (0..pixels).filter(|&i| differs(i)).step_by(d).collect();
-        let a: Vec<usize> = (0..pixels).filter(|&i| !differs(i)).step_by(a).collect();
-        (d, a)
+        let mut sample: Vec<usize> = (0..pixels).filter(|&i| differs(i)).step_by(d).collect();
+        let split = sample.len();
+        sample.extend((0..pixels).filter(|&i| !differs(i)).step_by(a));
+        (sample, split)
     });
     let total = reference.pixels.len() as f64;
     // The agreement a candidate would have, from its bytes on sample `k`; and a pixel it
@@ -140,9 +139,9 @@ pub fn diagnose_and_focus(
         let options = variants
             .iter()
             .try_fold(*options, |o, &v| o.with_variant(v).ok())?;
-        let (sample_d, sample_a) = &samples[k];
-        let sample: Vec<usize> = sample_d.iter().chain(sample_a).copied().collect();
-        let bytes = render::render_pixels(scene, &options, &sample);
+        let (sample, split) = &samples[k];
+        let (sample_d, sample_a) = sample.split_at(*split);
+        let bytes = render::render_pixels(scene, &options, sample);
         let fixed: Vec<usize> = (sample_d.iter().zip(&bytes))
             .filter(|&(&i, &b)| agrees(i, b))
             .map(|(&i, _)| i)
@@ -171,7 +170,8 @@ pub fn diagnose_and_focus(
         candidates.sort_by(|a, b| b.1.total_cmp(&a.1));
         candidates.truncate(SHORTLIST);
     };
-    let paths = render::involved(scene, options, &samples[1].0);
+    let (sample, split) = &samples[1];
+    let paths = render::involved(scene, options, &sample[..*split]);
     let focus = focus(scene, &paths);
     let mut candidates: Vec<Variant> = (Variant::tried())
         .filter(|v| v.kernel() != Some(options.kernel))
@@ -195,17 +195,13 @@ pub fn diagnose_and_focus(
         .collect();
     // Best first; a stable sort keeps the table's order among equals.
     estimated.sort_by(|a, b| b.agreement.total_cmp(&a.agreement));
-    // Rendered whole, best estimate first, until one explains the image.
+    // The best estimate rendered whole: its agreement is the one reported.
     let mut found: Vec<Tried> = Vec::new();
-    for tried in estimated.into_iter().take(RENDERED) {
-        if found.iter().any(|t| t.agreement >= EXPLAINED) {
-            break;
-        }
-        if let Some(agreement) = exact(&tried.variants)
-            && agreement > before
-        {
-            found.push(Tried { agreement, ..tried });
-        }
+    if let Some(tried) = estimated.into_iter().next()
+        && let Some(agreement) = exact(&tried.variants)
+        && agreement > before
+    {
+        found.push(Tried { agreement, ..tried });
     }
     // MAX_DIST can change only the pixels whose path reflects: it is estimated (at the
     // cost of a render) only where fixing every differing one of them would agree better
@@ -295,18 +291,16 @@ fn scoped(scene: &Scene, paths: &[render::Involved]) -> Vec<Variant> {
     let mut objects = vec![0usize; scene.objects.len()];
     let mut lights = vec![0usize; scene.lights.len()];
     for path in paths {
-        let mut seen: Vec<usize> = path.hits.clone();
-        seen.extend(path.blockers.iter().map(|&(object, _)| object));
-        seen.sort_unstable();
-        seen.dedup();
-        for object in seen {
+        let blockers = path.blockers.iter();
+        for object in distinct(
+            path.hits
+                .iter()
+                .copied()
+                .chain(blockers.clone().map(|b| b.0)),
+        ) {
             objects[object] += 1;
         }
-        let mut lit: Vec<usize> = path.lit_by.clone();
-        lit.extend(path.blockers.iter().map(|&(_, light)| light));
-        lit.sort_unstable();
-        lit.dedup();
-        for light in lit {
+        for light in distinct(path.lit_by.iter().copied().chain(blockers.map(|b| b.1))) {
             lights[light] += 1;
         }
     }
@@ -335,30 +329,33 @@ fn scoped(scene: &Scene, paths: &[render::Involved]) -> Vec<Variant> {
     edits
 }
 
-/// The object most involved in the sampled differing pixels' paths, and how.
+/// The indices `of` yields, each once: a path's objects or lights, a few.
+fn distinct(of: impl Iterator<Item = usize>) -> Vec<usize> {
+    let mut all: Vec<usize> = of.collect();
+    all.sort_unstable();
+    all.dedup();
+    all
+}
+
+/// The object most involved in the sampled differing pixels' paths, and how: each path
+/// counts once for an object, as the camera ray's hit first, else as a shadow's blocker,
+/// else as a mirror ray's hit.
 fn focus(scene: &Scene, paths: &[render::Involved]) -> Option<Focus> {
+    // Per object: the paths that involve it, then by the camera, a shadow, a mirror.
     let mut counts = vec![[0usize; 4]; scene.objects.len()];
     for path in paths {
-        let mut any = vec![false; 0];
-        any.resize(scene.objects.len(), false);
-        if let Some(&first) = path.hits.first() {
-            counts[first][1] += 1;
-            any[first] = true;
-        }
-        for &(object, _) in &path.blockers {
-            if !any[object] {
-                counts[object][2] += 1;
-            }
-            any[object] = true;
-        }
-        for &object in path.hits.iter().skip(1) {
-            if !any[object] {
-                counts[object][3] += 1;
-            }
-            any[object] = true;
-        }
-        for (object, &seen) in any.iter().enumerate() {
-            counts[object][0] += usize::from(seen);
+        let camera = path.hits.first().copied();
+        let blockers: Vec<usize> = path.blockers.iter().map(|b| b.0).collect();
+        for object in distinct(path.hits.iter().copied().chain(blockers.iter().copied())) {
+            let how = if Some(object) == camera {
+                1
+            } else if blockers.contains(&object) {
+                2
+            } else {
+                3
+            };
+            counts[object][0] += 1;
+            counts[object][how] += 1;
         }
     }
     let index = (0..counts.len()).max_by_key(|&i| (counts[i][0], std::cmp::Reverse(i)))?;

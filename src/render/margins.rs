@@ -18,11 +18,14 @@
 //! | inside the rectangle (§5.3) | min(\|qx\|, \|qx - w\|, \|qy\|, \|qy - h\|) / S |
 //! | which object is closest (§4.6) | (t₂ - t₁) / S for the two nearest |
 //! | a shadow hit before the light (§4.3) | \|t - dist\| / S |
-//! | the spotlight's cone (§4.3) | \|along - cos limit\| |
+//! | the spotlight's cone (§4.3) | \|along - cos limit\| · dist / (dist + \|P\|∞ + \|L\|∞) |
 //! | MAX_DIST (§4.2) | \|total_dist - MAX_DIST\| / MAX_DIST |
 //! | the tile, the texel (§5.4, §5.8) | the distance to the cell's edge / (S + the offset's size) |
 //! | a stripe (§5.5) | \|f - round f\| / (the terms of f, and its gradient times S) |
-//! | the byte (§4.7) | \|255 c - k\| / 255 c, k the nearest step |
+//! | the byte (§4.7) | \|255 c - k\| / 255 c, k the nearest step, over 16 κ |
+//!
+//! κ is the largest condition (spread / t) of the roots the path took: a decision taken
+//! at or after a point found from a badly conditioned root is divided by it.
 //!
 //! A decision matters to a query only if it could change its answer: an object's own
 //! decisions count when it wins, or when what it decides lies no further than the winner
@@ -41,8 +44,8 @@ use glam::DVec3;
 /// What the recorder needs of the scene for every pixel, computed once.
 pub(crate) struct Sizes<'a> {
     scene: &'a Scene,
-    /// Each object's anchor, |point|∞: its centre, its plane's point, its corner.
-    anchor: Vec<f64>,
+    /// What each object's decisions are measured against.
+    facts: Vec<Facts>,
     max_dist: f64,
     screen: Screen,
     /// How far past their answer the queries test objects ([`Recorder::reach`]); margins
@@ -57,12 +60,10 @@ impl<'a> Sizes<'a> {
         screen: Screen,
         precision: f64,
     ) -> Sizes<'a> {
-        let anchor = (scene.objects.iter())
-            .map(|object| anchor(&object.shape).abs().max_element())
-            .collect();
+        let facts = scene.objects.iter().map(|o| Facts::of(&o.shape)).collect();
         Sizes {
             scene,
-            anchor,
+            facts,
             max_dist,
             screen,
             reach: (64.0 * precision).min(MARGIN_REACH),
@@ -70,31 +71,42 @@ impl<'a> Sizes<'a> {
     }
 }
 
-/// The point a shape's equation is written about.
-fn anchor(shape: &Shape) -> DVec3 {
-    match shape {
-        Shape::Sphere(sphere) => sphere.centre,
-        Shape::Plane(plane) => plane.point,
-        Shape::FinitePlane(rectangle) => rectangle.frame.plane.point,
-        Shape::TiledPlane(frame) => frame.plane.point,
-        Shape::Paraboloid(p) => p.equation.frame.centre,
-        Shape::Cylinder(c) => c.equation.frame.centre,
-        Shape::Cone(c) => c.equation.frame.centre,
-        Shape::Hyperboloid(h) => h.equation.frame.centre,
-        Shape::Quadric(q) => q.centred.anchor,
-    }
+/// What one object's decisions are measured against, read from its shape at load.
+struct Facts {
+    /// |point|∞ of the point its equation is written about: its centre, its plane's
+    /// point, its corner.
+    anchor: f64,
+    /// The bounds of a quadric 21-24's local y (spec §5.6).
+    bounds: Option<(f64, f64)>,
+    /// Whether the z > 0 rule applies to its plane (spec §5.1).
+    z_rule: bool,
+    /// A finite plane's width and height (spec §5.3).
+    rectangle: Option<glam::DVec2>,
 }
 
-/// The bounds of a quadric 21-24's local y, if the shape has them.
-fn y_bounds(shape: &Shape) -> Option<(f64, f64)> {
-    let rule = match shape {
-        Shape::Paraboloid(p) => p.equation.rule,
-        Shape::Cylinder(c) => c.equation.rule,
-        Shape::Cone(c) => c.equation.rule,
-        Shape::Hyperboloid(h) => h.equation.rule,
-        _ => return None,
-    };
-    Some(rule.bounds())
+impl Facts {
+    fn of(shape: &Shape) -> Facts {
+        let (anchor, bounds) = match shape {
+            Shape::Sphere(sphere) => (sphere.centre, None),
+            Shape::Plane(plane) => (plane.point, None),
+            Shape::FinitePlane(rectangle) => (rectangle.frame.plane.point, None),
+            Shape::TiledPlane(frame) => (frame.plane.point, None),
+            Shape::Quadric(q) => (q.centred.anchor, None),
+            Shape::Paraboloid(p) => (p.equation.frame.centre, Some(p.equation.rule.bounds())),
+            Shape::Cylinder(c) => (c.equation.frame.centre, Some(c.equation.rule.bounds())),
+            Shape::Cone(c) => (c.equation.frame.centre, Some(c.equation.rule.bounds())),
+            Shape::Hyperboloid(h) => (h.equation.frame.centre, Some(h.equation.rule.bounds())),
+        };
+        Facts {
+            anchor: anchor.abs().max_element(),
+            bounds,
+            z_rule: shape.plane().is_some_and(|plane| plane.z_rule),
+            rectangle: match shape {
+                Shape::FinitePlane(rectangle) => Some(rectangle.size),
+                _ => None,
+            },
+        }
+    }
 }
 
 /// One pixel's margins, as the tracer tells its steps.
@@ -110,9 +122,10 @@ pub(crate) struct Margins<'s, 'a> {
     pub(crate) kappa: f64,
     /// The current ray's |B|∞.
     base: f64,
-    /// The distance to the current light (shadow rays), or infinity for a closest-hit
-    /// query.
+    /// The distance to the current light.
     light_dist: f64,
+    /// While a shadow ray's query is under way, the distance to its light.
+    shadow: Option<f64>,
     /// The current light and the current hit point (for the spotlight's margin).
     light: usize,
     point: DVec3,
@@ -136,6 +149,7 @@ impl<'s, 'a> Margins<'s, 'a> {
             kappa: 1.0,
             base: 0.0,
             light_dist: f64::INFINITY,
+            shadow: None,
             light: 0,
             point: DVec3::ZERO,
             near: Vec::new(),
@@ -154,10 +168,10 @@ impl<'s, 'a> Margins<'s, 'a> {
         };
     }
 
-    /// A new query along `ray`.
-    fn start(&mut self, ray: &Ray, light_dist: f64) {
+    /// A new query along `ray`: a shadow ray's to a light at `shadow`, or a closest hit.
+    fn start(&mut self, ray: &Ray, shadow: Option<f64>) {
         self.base = ray.base.abs().max_element();
-        self.light_dist = light_dist;
+        self.shadow = shadow;
         self.near.clear();
         self.nearest = [None; 2];
         self.surest_blocker = 0.0;
@@ -166,16 +180,14 @@ impl<'s, 'a> Margins<'s, 'a> {
 
     /// The size of a point at distance `t` on `object`'s equation.
     fn size(&self, object: usize, t: f64) -> f64 {
-        self.base + t.abs() + self.sizes.anchor[object]
+        self.base + t.abs() + self.sizes.facts[object].anchor
     }
 
     /// The smallest margin of `object`'s decisions in `notes`, and the t where it lies.
     #[inline]
     fn notes_margin(&self, object: usize, notes: &[HitNote]) -> (f64, f64) {
-        let shape = &self.sizes.scene.objects[object].shape;
-        // The size of a point at t on the object's equation.
-        let fixed = self.base + self.sizes.anchor[object];
-        let size = |t: f64| fixed + t.abs();
+        let facts = &self.sizes.facts[object];
+        let size = |t: f64| self.size(object, t);
         let mut least = (f64::INFINITY, f64::INFINITY);
         let mut plane_t = f64::INFINITY;
         let mut take = |margin: f64, t: f64| {
@@ -194,7 +206,7 @@ impl<'s, 'a> Margins<'s, 'a> {
                 HitNote::Root { t, y, .. } => {
                     let size = size(t);
                     take(t.abs() / size, t);
-                    if let Some((low, high)) = y_bounds(shape) {
+                    if let Some((low, high)) = facts.bounds {
                         take((y - low).abs().min((y - high).abs()) / size, t);
                     }
                 }
@@ -202,19 +214,13 @@ impl<'s, 'a> Margins<'s, 'a> {
                     plane_t = t;
                     let size = size(t);
                     take(t.abs() / size, t);
-                    let z_rule = match shape {
-                        Shape::Plane(plane) => plane.z_rule,
-                        Shape::TiledPlane(frame) => frame.plane.z_rule,
-                        Shape::FinitePlane(rectangle) => rectangle.frame.plane.z_rule,
-                        _ => false,
-                    };
-                    if z_rule {
+                    if facts.z_rule {
                         take(z.abs() / size, t);
                     }
                 }
                 HitNote::Rectangle { q, .. } => {
-                    if let Shape::FinitePlane(rectangle) = shape {
-                        let (w, h) = (rectangle.size.x, rectangle.size.y);
+                    if let Some(rectangle) = facts.rectangle {
+                        let (w, h) = (rectangle.x, rectangle.y);
                         let edge =
                             (q.x.abs().min((q.x - w).abs())).min(q.y.abs().min((q.y - h).abs()));
                         take(edge / size(plane_t), plane_t);
@@ -230,10 +236,8 @@ impl<'s, 'a> Margins<'s, 'a> {
     #[inline]
     fn test(&mut self, object: usize, t: Option<f64>, notes: &[HitNote]) {
         let (margin, at) = self.notes_margin(object, notes);
-        let shadow = self.light_dist.is_finite();
         let hit = t.filter(|&t| t > 0.0);
-        if shadow {
-            let dist = self.light_dist;
+        if let Some(dist) = self.shadow {
             match hit {
                 Some(t) if t < dist => {
                     let edge = (t - dist).abs() / self.size(object, t);
@@ -288,8 +292,9 @@ impl<'s, 'a> Margins<'s, 'a> {
             least = least.min((t2 - t1) / self.size(first, t2));
         }
         self.take(least);
-        // What follows starts from the hit point, as sure as its root (the winner is one
-        // of the two nearest hits).
+        // What follows starts from the hit point, as sure as its root. The winner is one
+        // of the two nearest hits but where a variant's ε or a box refused a nearer one;
+        // then its condition is not known and not taken.
         let won = |entry: &Option<(usize, f64, f64)>| entry.filter(|e| Some(e.0) == winner);
         if let Some((_, t, spread)) = self.nearest.iter().find_map(won) {
             self.kappa = self.kappa.max(spread / t.abs());
@@ -365,7 +370,7 @@ impl Recorder for Margins<'_, '_> {
                     let max = self.sizes.max_dist;
                     self.take((total_dist - max).abs() / max);
                 }
-                self.start(&ray, f64::INFINITY);
+                self.start(&ray, None);
             }
             Event::CutOff { total_dist } => {
                 let max = self.sizes.max_dist;
@@ -396,8 +401,7 @@ impl Recorder for Margins<'_, '_> {
                 }
             }
             Event::Light(LightStep::ShadowRay { ray }) => {
-                let dist = self.light_dist;
-                self.start(&ray, dist);
+                self.start(&ray, Some(self.light_dist));
             }
             Event::Light(LightStep::Blocked { blocker }) => {
                 let margin = match blocker {
@@ -405,7 +409,7 @@ impl Recorder for Margins<'_, '_> {
                     None => self.nearest_miss,
                 };
                 self.take(margin);
-                self.light_dist = f64::INFINITY;
+                self.shadow = None;
             }
             _ => {}
         }

@@ -23,14 +23,14 @@ pub mod variant;
 
 pub use choices::{Choices, by_name, size_problem};
 pub use record::{Event, LightStep, Skip, Stats};
-
-/// The largest precision `compare` takes: how far past its answer a query goes on
-/// testing objects while the margins are recorded.
-pub const MAX_PRECISION: f64 = record::MARGIN_REACH;
 pub use shading::PatternNote;
 pub use stage::{Show, Stage};
 pub use trace::{CourseIds, Trace, trace};
 pub use variant::{Kind, VARIANTS, Variant, Variants};
+
+/// The largest precision `compare` takes: how far past its answer a query goes on
+/// testing objects while the margins are recorded, at most.
+pub const MAX_PRECISION: f64 = record::MARGIN_REACH;
 
 use crate::scene::Scene;
 use crate::shapes::kernel::{KernelChoice, with_kernel};
@@ -353,8 +353,8 @@ fn on_a_pool<T: Send>(
     true
 }
 
-/// The object a camera ray hits first, in 4 bytes (a pixel of a 4096x4096 reference
-/// keeps one): its index plus one, or nothing for the background.
+/// The object a camera ray hits first, in 4 bytes (half of a reference pixel's
+/// [`Mark`]): its index plus one, or nothing for the background.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct FirstHit(Option<std::num::NonZeroU32>);
 

@@ -282,17 +282,17 @@ fn test_and_record<K: Kernel, R: Recorder>(
     t
 }
 
-/// The few decisions of one test (at most four: the discriminant and two roots, or a
+/// The few decisions of one test (at most three: the discriminant and two roots, or a
 /// plane's t and its rectangle), kept without allocating.
 struct Few {
-    notes: [HitNote; 6],
+    notes: [HitNote; 3],
     len: usize,
 }
 
 impl Default for Few {
     fn default() -> Few {
         Few {
-            notes: [HitNote::NoRealRoot; 6],
+            notes: [HitNote::NoRealRoot; 3],
             len: 0,
         }
     }
@@ -306,6 +306,10 @@ impl Few {
 
 impl Notes for Few {
     fn note(&mut self, note: HitNote) {
+        debug_assert!(
+            self.len < self.notes.len(),
+            "a test with more than 3 decisions"
+        );
         if self.len < self.notes.len() {
             self.notes[self.len] = note;
             self.len += 1;
