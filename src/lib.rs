@@ -18,6 +18,7 @@
 
 #![warn(missing_docs)]
 
+pub mod against;
 pub mod compare;
 pub mod error;
 pub mod image_output;

@@ -1,7 +1,7 @@
 //! `legacy-rt trace X Y [W H]`: the trace of one pixel, readable or in the course's
 //! format, and with `-o` the image with that pixel marked.
 
-use super::io::{emit_to_stdout, read_scene};
+use super::io::{MAX_INPUT, emit_to_stdout, open_regular, read_all, read_scene, text_of};
 use super::render::{render_with_progress, write_image};
 use super::{Failure, HowArgs, check_stdout, output_file, pixels, size, usage};
 use std::path::PathBuf;
@@ -14,9 +14,17 @@ Examples:
   legacy-rt trace 320 240 --format course < s.txt     the course's PIX/WRL/FND/HIT/AMB lines
   legacy-rt trace 320 240 --stage diffuse < s.txt     as the no-shadows assignment computes it
   legacy-rt trace 320 240 -o traced.png < s.txt       and the image, the pixel marked green
+  legacy-rt trace 320 240 --against dbg.txt < s.txt   your program's DBG_ trace read against
+                                                      the reference: the first number that
+                                                      differs, by object, light and line
 
 (0, 0) is the lower-left pixel, as in the course (spec §4.1). The trace goes to standard
-output; its last line is `bytes: R G B`, the pixel's bytes in the image.";
+output; its last line is `bytes: R G B`, the pixel's bytes in the image.
+
+With --against FILE: FILE is what the course program printed on standard error when built
+with its DBG_ flags, for this pixel or a whole image (docs/trace.md says how to make it).
+Exit 0 when it agrees with the reference, 1 at a difference, 2 when FILE cannot be read
+or holds no trace of this pixel of this scene.";
 
 /// The trace's arguments.
 #[derive(clap::Args, Debug)]
@@ -41,6 +49,16 @@ pub struct TraceArgs {
     /// lines, with its object ids: lights and objects numbered together from 0)
     #[arg(long, value_name = "FORMAT", default_value = "readable", value_parser = ["readable", "course"])]
     format: String,
+
+    /// Read FILE, the standard error of a student's program built with the course's DBG_
+    /// flags, against the reference's trace of the pixel: the first number that differs
+    #[arg(long, value_name = "FILE")]
+    against: Option<PathBuf>,
+
+    /// With --against: the comparisons as JSON (every value compared, the first
+    /// difference)
+    #[arg(long, requires = "against")]
+    json: bool,
 
     /// Also write the image to FILE with the traced pixel painted green
     #[arg(short, long, value_name = "FILE")]
@@ -71,10 +89,22 @@ pub fn run(args: &TraceArgs) -> Result<(), Failure> {
     }
     let options = args.how.options(&scene, width, height)?;
     let (x, y) = (args.x as usize, args.y as usize);
+    // The student's trace is read before anything is rendered: an unreadable FILE fails
+    // at once.
+    let student = match &args.against {
+        Some(path) => Some((
+            path,
+            text_of(read_all(open_regular(path)?, path, MAX_INPUT)?),
+        )),
+        None => None,
+    };
     let trace = legacy_rt::render::trace(&scene, &options, x, y).expect("the pixel is inside");
-    let text = match args.format.as_str() {
-        "course" => trace.course(&scene),
-        _ => trace.readable(&scene),
+    let (text, differs) = match &student {
+        Some((path, student)) => against(&scene, &trace, path, student, args.json)?,
+        None => match args.format.as_str() {
+            "course" => (trace.course(&scene), false),
+            _ => (trace.readable(&scene), false),
+        },
     };
     if let Some(output) = output {
         let mut image = render_with_progress(&scene, &options);
@@ -82,5 +112,49 @@ pub fn run(args: &TraceArgs) -> Result<(), Failure> {
         image.pixels[at] = MARK;
         write_image(&image, output.format, Some(output))?;
     }
-    emit_to_stdout(text.as_bytes())
+    emit_to_stdout(text.as_bytes())?;
+    match differs {
+        true => Err(Failure(String::new(), 1)),
+        false => Ok(()),
+    }
+}
+
+/// The student's trace read against the reference's: the report, and whether they differ.
+fn against(
+    scene: &legacy_rt::Scene,
+    trace: &legacy_rt::render::Trace,
+    path: &std::path::Path,
+    student: &str,
+    json: bool,
+) -> Result<(String, bool), Failure> {
+    let shown = legacy_rt::error::escaped(&path.display().to_string());
+    let report = legacy_rt::against::against(scene, trace, student).map_err(|unreadable| {
+        Failure(
+            format!(
+                "error: cannot read {shown} against the reference: {}",
+                unreadable.0
+            ),
+            2,
+        )
+    })?;
+    let differs = report.first_difference().is_some();
+    let text = match json {
+        true => {
+            let value = serde_json::json!({
+                "pixel": report.pixel,
+                "size": [trace.options.width, trace.options.height],
+                "file": path.display().to_string(),
+                "lines": report.lines,
+                "id_base": report.id_base,
+                "notes": report.notes,
+                "agrees": !differs,
+                "differences": report.differences(),
+                "first_difference": report.first_difference(),
+                "compared": report.compared,
+            });
+            serde_json::to_string_pretty(&value).expect("the report is plain data") + "\n"
+        }
+        false => report.text(scene, trace, &shown, student),
+    };
+    Ok((text, differs))
 }

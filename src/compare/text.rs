@@ -295,6 +295,23 @@ pub fn text(report: &Report, reference: &str, student: &str, choices: Option<&Ch
                 parts.join(", ")
             ));
         }
+        // The student's own program can say where it leaves the reference, number by
+        // number: its DBG_ trace of a differing pixel, read with --against.
+        // The pixel named just above if there is one, else the worst.
+        let named = diagnosis
+            .first()
+            .filter(|best| best.subject.is_some() && best.agreement_after >= LOCALISED)
+            .and_then(|best| best.trace.as_ref());
+        let worst = report.worst.iter().find_map(|w| w.trace.as_ref());
+        if let Some(command) = named.or(worst)
+            && let Some((command, scene)) = command.split_once(" < ")
+        {
+            line(format!(
+                "to find the first number where your program goes wrong, build it with its \
+                 DBG_ flags, run it with 2> dbg.txt and run: `{command} --against dbg.txt < \
+                 {scene}` (docs/trace.md)"
+            ));
+        }
     }
     out
 }

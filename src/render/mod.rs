@@ -17,7 +17,7 @@ mod record;
 mod shading;
 mod stage;
 mod tiles;
-mod trace;
+pub(crate) mod trace;
 mod tracer;
 pub mod variant;
 

@@ -67,13 +67,13 @@ fn vector(v: DVec3) -> String {
 }
 
 /// How an object is named in the readable trace: its kind and the line of its type code.
-fn object_name(scene: &Scene, index: usize) -> String {
+pub(crate) fn object_name(scene: &Scene, index: usize) -> String {
     let object = &scene.objects[index];
     format!("{} (line {})", object.kind, object.line)
 }
 
 /// How a light is named: its number (from 1), kind and line.
-fn light_name(scene: &Scene, index: usize) -> String {
+pub(crate) fn light_name(scene: &Scene, index: usize) -> String {
     let light = &scene.lights[index];
     let kind = if light.beam.is_some() {
         "spotlight"
@@ -163,7 +163,15 @@ impl Trace {
     /// The readable trace: an indented tree in the renderer's order, every number with
     /// six decimals, and as its last line `bytes: R G B`.
     pub fn readable(&self, scene: &Scene) -> String {
+        self.readable_with_starts(scene).0
+    }
+
+    /// The readable trace, and for each event the number of the line (from 0) where its
+    /// lines start.
+    pub fn readable_with_starts(&self, scene: &Scene) -> (String, Vec<usize>) {
         let mut out = String::new();
+        let mut starts = Vec::with_capacity(self.events.len());
+        let mut lines = 2; // the pixel and the world point
         let (x, y) = self.pixel;
         let (w, h) = (self.options.width, self.options.height);
         let mut stage = match self.options.show {
@@ -190,12 +198,15 @@ impl Trace {
                 _ => {}
             }
             let indent = if in_shadow_ray { "      " } else { "  " };
+            starts.push(lines);
+            let before = out.len();
             self.readable_event(scene, event, indent, &mut out);
+            lines += out[before..].bytes().filter(|&b| b == b'\n').count();
         }
         let _ = writeln!(out, "colour {}", vector(self.colour));
         let [r, g, b] = self.bytes;
         let _ = writeln!(out, "bytes: {r} {g} {b}");
-        out
+        (out, starts)
     }
 
     fn readable_event(&self, scene: &Scene, event: &Event, indent: &str, out: &mut String) {

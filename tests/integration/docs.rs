@@ -193,7 +193,7 @@ fn the_readme_s_trace_example_is_what_the_program_prints() {
         .find("When no variant explains it, trace a pixel")
         .unwrap();
     let section = &readme[start..];
-    let section = &section[..section.find("\n### ").unwrap()];
+    let section = &section[..section.find("`legacy-rt` can do that lining up").unwrap()];
     let blocks = fenced_blocks(section, "text");
     assert!(blocks.len() >= 4, "{blocks:?}");
     assert_eq!(blocks[0], "legacy-rt trace 410 175 < examples/studio.txt\n");
@@ -209,6 +209,39 @@ fn the_readme_s_trace_example_is_what_the_program_prints() {
             );
         }
     }
+}
+
+#[test]
+fn the_readme_s_against_example_is_what_the_program_prints() {
+    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
+    let start = readme.find("`legacy-rt` can do that lining up").unwrap();
+    let section = &readme[start..];
+    let section = &section[..section.find("\n### ").unwrap()];
+    let blocks = fenced_blocks(section, "text");
+    assert_eq!(blocks.len(), 2, "{blocks:?}");
+    let command =
+        "legacy-rt trace 410 175 --against examples/studio-410-175.dbg < examples/studio.txt\n";
+    assert_eq!(blocks[0], command);
+    // Run from the repository's folder, as the README's reader does.
+    let output = std::process::Command::new(env!("CARGO_BIN_EXE_legacy-rt"))
+        .args([
+            "trace",
+            "410",
+            "175",
+            "--against",
+            "examples/studio-410-175.dbg",
+        ])
+        .current_dir(root())
+        .stdin(std::fs::File::open(root().join("examples/studio.txt")).unwrap())
+        .output()
+        .unwrap();
+    assert_eq!(output.status.code(), Some(1));
+    let report = String::from_utf8(output.stdout).unwrap();
+    assert!(
+        report.starts_with(&blocks[1]),
+        "README:\n{}\nreport:\n{report}",
+        blocks[1]
+    );
 }
 
 #[test]

@@ -1,6 +1,9 @@
 //! The integration tests, linked into one binary (../shared/STYLE.md: one binary is cheaper to build
 //! and link on a 2-core CI than one per file).
 
+// `trace --against`: students' own debug traces, in every format of spec §8, with one
+// planted mistake each.
+mod against;
 // The hard-case suite: the shipped kernel within 4 ulps, the textbook formula not.
 mod accuracy;
 // The command line: sizes, formats, options, standard output holding only the image.
