@@ -324,17 +324,28 @@ fn number_spans(text: &str) -> Vec<(usize, usize)> {
     let bytes = text.as_bytes();
     let mut spans = Vec::new();
     let mut i = 0;
-    let glued = |i: usize| i > 0 && (bytes[i - 1].is_ascii_alphanumeric() || bytes[i - 1] == b'.');
+    // A number glued to a word, a point or any character outside ASCII (a letter of
+    // another alphabet, a typographic minus) is part of something else.
+    let glued = |i: usize| {
+        i > 0
+            && (bytes[i - 1].is_ascii_alphanumeric()
+                || bytes[i - 1] == b'.'
+                || !bytes[i - 1].is_ascii())
+    };
     while i < bytes.len() {
         let start = i;
         let mut j = i;
         if matches!(bytes[j], b'-' | b'+') {
             j += 1;
         }
-        let word = text[j..].get(..3).map(str::to_ascii_lowercase);
-        if matches!(word.as_deref(), Some("nan" | "inf")) && !glued(start) {
+        // Bytes, not text: `i` may sit inside a character of another alphabet.
+        let word = bytes.get(j..j + 3).map(<[u8]>::to_ascii_lowercase);
+        if matches!(word.as_deref(), Some(b"nan" | b"inf")) && !glued(start) {
             let mut end = j + 3;
-            if text[end..].to_ascii_lowercase().starts_with("inity") {
+            if bytes
+                .get(end..end + 5)
+                .is_some_and(|rest| rest.eq_ignore_ascii_case(b"inity"))
+            {
                 end += 5;
             }
             // `nan(0x8000)` as some C libraries print it.
@@ -434,6 +445,12 @@ mod tests {
         assert!(matches!(&said[7], (6, Said::Labelled(Label::Cos, v)) if v[0].value == 0.5));
         assert!(matches!(said[8], (7, Said::Amb(_))));
         assert_eq!(said.len(), 9);
+    }
+
+    #[test]
+    fn text_in_any_alphabet_is_passed_over() {
+        assert_eq!(values("é1 ünan −2 ∞ 3"), [3.0]);
+        assert!(read("FND é: ñ\nHIT ½ 2 (1, 2, 3)\ncos is ∞").is_empty());
     }
 
     #[test]
