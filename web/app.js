@@ -79,6 +79,7 @@ const state = {
   generation: 0, // bumped by every edit: answers to an older one are dropped
   full: null, // the last full-size render: { width, height, ms }
   picked: null, // the traced pixel: { x, row } in the full-size image
+  againstName: 'dbg.txt', // the student's trace file, as the report names it
   student: null, // the compared image: { name, bytes }
   comparison: null,
   openedAt: null, // when the scene was opened, until its first picture is shown
@@ -272,6 +273,7 @@ function forgetPixel() {
   $('trace-title').textContent = 'Click a pixel to trace it';
   delete $('trace-pane').dataset.pixel;
   delete $('trace-pane').dataset.bytes;
+  showAgainst(null);
 }
 
 function drawMark() {
@@ -313,7 +315,83 @@ async function tracePixel(x, row) {
   $('trace').textContent = traced.text;
   $('trace-pane').dataset.pixel = `${traced.x},${traced.y}`;
   $('trace-pane').dataset.bytes = traced.bytes.join(' ');
+  await readAgainst();
 }
+
+// ---- The student's own debug trace, read against the clicked pixel's (`--against`).
+
+// The report's text and whether it agrees: 'yes', 'no', 'unreadable'; null hides it.
+function showAgainst(text, agrees) {
+  const report = $('against-report');
+  report.hidden = text === null;
+  report.textContent = text ?? '';
+  if (agrees) report.dataset.agrees = agrees;
+  else delete report.dataset.agrees;
+}
+
+// Reads the pasted or opened trace against the picked pixel of the full-size image.
+async function readAgainst() {
+  const student = $('against').value;
+  const full = state.full;
+  if (!state.picked || !full || !student.trim()) {
+    showAgainst(null);
+    return;
+  }
+  const { x, row } = state.picked;
+  try {
+    const read = await renderer.call('against', {
+      text: editor.value, x, row, width: full.width, height: full.height,
+      choices: choices(), fileName: state.againstName, student,
+    });
+    showAgainst(read.text, read.agrees ? 'yes' : 'no');
+  } catch (error) {
+    if (error.cancelled) throw error;
+    showAgainst(`error: ${error.message}`, 'unreadable');
+  }
+}
+
+// After the trace was pasted, typed, opened or dropped.
+async function againstChanged() {
+  $('against-box').open = true;
+  if (!state.picked) {
+    showAgainst('Click the pixel whose trace this is.', null);
+    return;
+  }
+  setState('tracing');
+  try {
+    await readAgainst();
+    setState('done');
+  } catch (error) {
+    if (!error.cancelled) setState('error');
+  }
+}
+
+let againstTimer = null;
+$('against').addEventListener('input', () => {
+  state.againstName = 'dbg.txt';
+  clearTimeout(againstTimer);
+  againstTimer = setTimeout(againstChanged, 200);
+});
+async function takeAgainst(file) {
+  $('against').value = await file.text();
+  state.againstName = file.name;
+  await againstChanged();
+}
+$('open-against').addEventListener('change', (event) => {
+  const [file] = event.target.files;
+  if (file) takeAgainst(file);
+  event.target.value = '';
+});
+$('against').addEventListener('drop', (event) => {
+  const [file] = event.dataTransfer.files;
+  if (!file) return;
+  event.preventDefault();
+  takeAgainst(file);
+});
+$('forget-against').addEventListener('click', () => {
+  $('against').value = '';
+  showAgainst(null);
+});
 
 $('image').addEventListener('click', async (event) => {
   const canvas = $('image');

@@ -57,6 +57,13 @@ const ops = {
     return JSON.parse(json);
   },
 
+  against({ text, x, row, width, height, choices, fileName, student }) {
+    const result = load(text);
+    if (result.error) throw sceneError(result);
+    const json = session.against(x, row, width, height, JSON.stringify(choices), fileName, student);
+    return JSON.parse(json);
+  },
+
   compare({ text, sceneName, name, bytes, choices, levels, allow, diagnose }) {
     const result = load(text);
     if (result.error) throw sceneError(result);

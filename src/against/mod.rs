@@ -82,6 +82,50 @@ impl Report {
     }
 }
 
+/// What `trace --against --json` prints (and the page reads): the report with the
+/// image's size and the student's file.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Summary<'a> {
+    /// The pixel, (0, 0) at the lower left.
+    pub pixel: (usize, usize),
+    /// The image's width and height.
+    pub size: (usize, usize),
+    /// The student's file, as named.
+    pub file: &'a str,
+    /// The lines of the file that hold the pixel's trace (from 1, inclusive).
+    pub lines: (usize, usize),
+    /// Where the student's ids start.
+    pub id_base: i64,
+    /// Notes on how the trace was read.
+    pub notes: &'a [String],
+    /// Whether every comparison agrees.
+    pub agrees: bool,
+    /// How many disagree.
+    pub differences: usize,
+    /// The first that disagrees.
+    pub first_difference: Option<&'a Check>,
+    /// Every comparison, in the reference's order.
+    pub compared: &'a [Check],
+}
+
+impl Report {
+    /// The report as `--json` gives it, for the pixel of `trace` and the file `file`.
+    pub fn summary<'a>(&'a self, trace: &Trace, file: &'a str) -> Summary<'a> {
+        Summary {
+            pixel: self.pixel,
+            size: (trace.options.width, trace.options.height),
+            file,
+            lines: self.lines,
+            id_base: self.id_base,
+            notes: &self.notes,
+            agrees: self.first_difference().is_none(),
+            differences: self.differences(),
+            first_difference: self.first_difference(),
+            compared: &self.compared,
+        }
+    }
+}
+
 /// Why a student's trace cannot be read against this pixel of this scene.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Unreadable(pub String);

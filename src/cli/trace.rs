@@ -140,19 +140,9 @@ fn against(
     let differs = report.first_difference().is_some();
     let text = match json {
         true => {
-            let value = serde_json::json!({
-                "pixel": report.pixel,
-                "size": [trace.options.width, trace.options.height],
-                "file": path.display().to_string(),
-                "lines": report.lines,
-                "id_base": report.id_base,
-                "notes": report.notes,
-                "agrees": !differs,
-                "differences": report.differences(),
-                "first_difference": report.first_difference(),
-                "compared": report.compared,
-            });
-            serde_json::to_string_pretty(&value).expect("the report is plain data") + "\n"
+            let file = path.display().to_string();
+            let summary = report.summary(trace, &file);
+            serde_json::to_string_pretty(&summary).expect("the report is plain data") + "\n"
         }
         false => report.text(scene, trace, &shown, student),
     };

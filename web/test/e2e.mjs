@@ -11,7 +11,9 @@
 //   4. a texture not added is the command line's error, and once added it renders;
 //   5. a clicked pixel shows the command line's trace, whose final bytes are the canvas's;
 //   6. a dropped image made with a known mistake (--variant) gets the command line's
-//      compare report, which names that variant, and a diff image over the canvas.
+//      compare report, which names that variant, and a diff image over the canvas;
+//   7. a student's own debug trace pasted beside a clicked pixel gets `trace --against`'s
+//      report: the planted first difference, agreement, or the refusal of another pixel.
 // --screenshot FILE saves the page with a traced pixel (docs/web-page.png is one).
 // --bench times 640x480 renders of the course scenes in the page's worker (the render
 // call alone) against the native binary on one thread (target/release/legacy-rt, CPU
@@ -300,6 +302,64 @@ async function namesTheMistake(page, name, variant) {
   console.log(`ok 6 - an image made with --variant ${variant} is diagnosed as it`);
 }
 
+// 7. A student's own debug trace pasted beside a clicked pixel is read as
+// `trace --against` reads it: the planted mistake of examples/studio-410-175.dbg is the
+// first difference, the reference's own trace agrees, another pixel's is refused.
+async function readsAStudentsTrace(page) {
+  // Wide enough that the 640x480 canvas is shown at one CSS pixel per pixel: shown
+  // smaller, some of its pixels are reached by no click.
+  const viewport = page.viewportSize();
+  await page.setViewportSize({ width: 2400, height: 1000 });
+  assert.equal(await openExample(page, 'studio.txt'), 'done');
+  await page.fill('#height', '480');
+  assert.equal(await setAndRender(page, '#width', '640'), 'done');
+  const box = await page.locator('#image').boundingBox();
+  assert.equal(Math.round(box.width), 640, 'the canvas is shown at its size');
+  const [x, y] = [410, 175];
+  await page.evaluate(() => { document.body.dataset.state = 'edited'; });
+  // The browser gives a click whole CSS pixels: aim at the first whole coordinate inside
+  // the image's pixel (the canvas may start at a fractional one).
+  const inside = (start, offset) => Math.ceil(start + offset) - start + 0.05;
+  await page.click('#image', { position: { x: inside(box.x, x), y: inside(box.y, 480 - 1 - y) } });
+  assert.equal(await settled(page), 'done');
+  assert.equal(await page.getAttribute('#trace-pane', 'data-pixel'), `${x},${y}`);
+  const scene = readFileSync(join(top, 'examples/studio.txt'));
+  const pixel = ['trace', String(x), String(y), '640', '480'];
+  // Pasted: the page calls it dbg.txt, so the command line reads a dbg.txt too.
+  const read = async (student) => {
+    writeFileSync(join(scratch, 'dbg.txt'), student);
+    await page.click('#against-box summary');
+    await page.evaluate(() => { document.body.dataset.state = 'edited'; });
+    await page.fill('#against', student);
+    await page.waitForFunction(() => document.getElementById('against-report').dataset.agrees);
+    assert.equal(await settled(page), 'done');
+    const cli = legacyRt([...pixel, '--against', 'dbg.txt'], { input: scene, cwd: scratch });
+    const shown = await page.textContent('#against-report');
+    const agrees = await page.getAttribute('#against-report', 'data-agrees');
+    await page.click('#forget-against');
+    assert.equal(await page.isVisible('#against-report'), false);
+    await page.click('#against-box summary');
+    return { cli, shown, agrees };
+  };
+  const planted = await read(readFileSync(join(top, 'examples/studio-410-175.dbg'), 'utf8'));
+  assert.equal(planted.cli.status, 1, planted.cli.stderr);
+  assert.equal(planted.shown, planted.cli.stdout.toString());
+  assert.equal(planted.agrees, 'no');
+  assert.match(planted.shown, /^first difference: .*distance/);
+  const own = legacyRt([...pixel, '--format', 'course'], { input: scene });
+  const agreeing = await read(own.stdout.toString());
+  assert.equal(agreeing.cli.status, 0, agreeing.cli.stderr);
+  assert.equal(agreeing.shown, agreeing.cli.stdout.toString());
+  assert.equal(agreeing.agrees, 'yes');
+  const other = legacyRt(['trace', '100', '100', '640', '480', '--format', 'course'], { input: scene });
+  const refused = await read(other.stdout.toString());
+  assert.equal(refused.cli.status, 2);
+  assert.equal(refused.shown, refused.cli.stderr.trimEnd());
+  assert.equal(refused.agrees, 'unreadable');
+  await page.setViewportSize(viewport);
+  console.log(`ok 7 - a pasted trace of pixel (${x}, ${y}) is read as trace --against reads it: ${planted.shown.split('\n')[0].slice(0, 80)}…`);
+}
+
 // The page showing the gallery of quadrics with a traced pixel, for the docs: a fresh
 // page, so that nothing of the tests shows.
 async function takeScreenshot(browser, url, file) {
@@ -387,6 +447,7 @@ async function main() {
     await takesAddedTextures(page);
     await tracesAClickedPixel(page, 'spheres.txt');
     await namesTheMistake(page, 'spheres.txt', 'square-falloff');
+    await readsAStudentsTrace(page);
     if (screenshot) await takeScreenshot(browser, url, screenshot);
     assert.deepEqual(problems, [], 'no uncaught error on the page');
   } finally {

@@ -7,7 +7,7 @@
 //! the page, and cancelling one is ending the worker.
 
 use legacy_rt::compare::{self, Settings, Tolerance, Verdict};
-use legacy_rt::render::{Choices, Show, Stage, Variant, by_name, size_problem};
+use legacy_rt::render::{Choices, Show, Stage, Trace, Variant, by_name, size_problem};
 use legacy_rt::scene::{Files, InMemory, NOT_FOUND};
 use legacy_rt::shapes::kernel::KernelChoice;
 use legacy_rt::{Image, Options, Scene, SceneError};
@@ -175,6 +175,22 @@ impl Session {
         result.to_string()
     }
 
+    /// The reference's trace of the pixel in column `x` and canvas row `row` (0 at the
+    /// top) of a render with `options`.
+    fn pixel(&self, options: &Options, x: u32, row: u32) -> Result<Trace, JsError> {
+        let (w, h) = (options.width, options.height);
+        let (x, row) = (x as usize, row as usize);
+        if x >= w || row >= h {
+            return Err(thrown(format!(
+                "column {x}, row {row} is outside the {w}x{h} image"
+            )));
+        }
+        // The row map is its own inverse: it gives the pixel row a canvas row shows.
+        let y = options.row_of(row);
+        legacy_rt::render::trace(self.scene()?, options, x, y)
+            .ok_or_else(|| thrown("the pixel is outside the image"))
+    }
+
     fn scene(&self) -> Result<&Scene, JsError> {
         self.scene
             .as_ref()
@@ -252,18 +268,9 @@ impl Session {
         scene_name: &str,
     ) -> Result<String, JsError> {
         let (options, chosen) = self.options(width, height, choices_json)?;
-        let (w, h) = (options.width, options.height);
-        let (x, row) = (x as usize, row as usize);
-        if x >= w || row >= h {
-            return Err(thrown(format!(
-                "column {x}, row {row} is outside the {w}x{h} image"
-            )));
-        }
-        // The row map is its own inverse: it gives the pixel row a canvas row shows.
-        let y = options.row_of(row);
+        let trace = self.pixel(&options, x, row)?;
         let scene = self.scene()?;
-        let trace = legacy_rt::render::trace(scene, &options, x, y)
-            .ok_or_else(|| thrown("the pixel is outside the image"))?;
+        let (x, y) = trace.pixel;
         let text = match format {
             "course" => trace.course(scene),
             _ => trace.readable(scene),
@@ -277,6 +284,39 @@ impl Session {
             "command": command,
         });
         Ok(traced.to_string())
+    }
+
+    /// The student's own debug trace (`student`, the text of the file `file_name`) read
+    /// against the reference's trace of the pixel in column `x` and canvas row `row`, as
+    /// `legacy-rt trace X Y W H --against FILE` reads it. JSON: `trace --against --json`'s
+    /// keys and `text`, the report the command prints. A trace that cannot be read
+    /// against this pixel (another pixel, size or scene; no DBG_ line) is an error with
+    /// the command's message.
+    #[allow(clippy::too_many_arguments)]
+    pub fn against(
+        &self,
+        x: u32,
+        row: u32,
+        width: u32,
+        height: u32,
+        choices_json: &str,
+        file_name: &str,
+        student: &str,
+    ) -> Result<String, JsError> {
+        let (options, _) = self.options(width, height, choices_json)?;
+        let trace = self.pixel(&options, x, row)?;
+        let scene = self.scene()?;
+        let shown = legacy_rt::error::escaped(file_name);
+        let report = legacy_rt::against::against(scene, &trace, student).map_err(|unreadable| {
+            thrown(format!(
+                "cannot read {shown} against the reference: {}",
+                unreadable.0
+            ))
+        })?;
+        let mut json = serde_json::to_value(report.summary(&trace, file_name))
+            .map_err(|error| thrown(error.to_string()))?;
+        json["text"] = report.text(scene, &trace, &shown, student).into();
+        Ok(json.to_string())
     }
 
     /// Compares the student's image (`bytes` of a PPM or PNG file named `name`) with the
@@ -445,5 +485,31 @@ mod tests {
         );
         assert!(choices(r#"{"max_dist": 0}"#).is_err());
         assert!(choices(r#"{"colour": 1}"#).is_err());
+    }
+
+    #[test]
+    fn a_students_trace_is_read_as_the_command_line_reads_it() {
+        let mut session = Session::new();
+        let loaded = session.load(include_str!("../../../examples/studio.txt"));
+        assert!(loaded.starts_with(r#"{"ok""#), "{loaded}");
+        // Pixel (410, 175) of 640x480 is canvas row 480 - 1 - 175.
+        let (x, row, choices) = (410, 304, "{}");
+        let json = |text: Option<String>| -> serde_json::Value {
+            serde_json::from_str(&text.expect("an answer")).unwrap()
+        };
+        let reference = json(session.trace(x, row, 640, 480, choices, "course", "s.txt").ok());
+        assert_eq!(reference["y"], 175);
+        let own = reference["text"].as_str().unwrap();
+        let agrees = json(session.against(x, row, 640, 480, choices, "dbg.txt", own).ok());
+        assert_eq!(agrees["agrees"], true);
+        assert!(agrees["text"].as_str().unwrap().contains("agrees"));
+        // The README's example: a student's trace with the light's distance squared.
+        let planted = include_str!("../../../examples/studio-410-175.dbg");
+        let differs = json(session.against(x, row, 640, 480, choices, "dbg.txt", planted).ok());
+        assert_eq!(differs["agrees"], false);
+        assert_eq!(differs["pixel"], serde_json::json!([410, 175]));
+        let first = &differs["first_difference"];
+        assert_eq!(first["quantity"], "distance to the light", "{first}");
+        assert!(differs["text"].as_str().unwrap().starts_with("first difference: "));
     }
 }
