@@ -497,19 +497,36 @@ mod tests {
         let json = |text: Option<String>| -> serde_json::Value {
             serde_json::from_str(&text.expect("an answer")).unwrap()
         };
-        let reference = json(session.trace(x, row, 640, 480, choices, "course", "s.txt").ok());
+        let reference = json(
+            session
+                .trace(x, row, 640, 480, choices, "course", "s.txt")
+                .ok(),
+        );
         assert_eq!(reference["y"], 175);
         let own = reference["text"].as_str().unwrap();
-        let agrees = json(session.against(x, row, 640, 480, choices, "dbg.txt", own).ok());
+        let agrees = json(
+            session
+                .against(x, row, 640, 480, choices, "dbg.txt", own)
+                .ok(),
+        );
         assert_eq!(agrees["agrees"], true);
         assert!(agrees["text"].as_str().unwrap().contains("agrees"));
         // The README's example: a student's trace with the light's distance squared.
         let planted = include_str!("../../../examples/studio-410-175.dbg");
-        let differs = json(session.against(x, row, 640, 480, choices, "dbg.txt", planted).ok());
+        let differs = json(
+            session
+                .against(x, row, 640, 480, choices, "dbg.txt", planted)
+                .ok(),
+        );
         assert_eq!(differs["agrees"], false);
         assert_eq!(differs["pixel"], serde_json::json!([410, 175]));
         let first = &differs["first_difference"];
         assert_eq!(first["quantity"], "distance to the light", "{first}");
-        assert!(differs["text"].as_str().unwrap().starts_with("first difference: "));
+        assert!(
+            differs["text"]
+                .as_str()
+                .unwrap()
+                .starts_with("first difference: ")
+        );
     }
 }
