@@ -23,9 +23,7 @@ Examples:
   legacy-rt compare --diff diff.png scene.txt mine.ppm    a picture of where they differ
   legacy-rt compare --json scene.txt mine.ppm       the report for scripts
 
-  for f in submissions/*.ppm; do                    grading a class
-    legacy-rt compare scene.txt \"$f\" > \"${f%.ppm}.txt\"; echo \"$f $?\"
-  done
+  legacy-rt grade scenes/ submissions/ -o report/   a whole class (legacy-rt grade --help)
 
 The first file is a scene or an image, told apart by its content. Images are PPM (P6 or
 P3, 8 bits) or PNG, regular files of at most --max-pixels pixels (4096x4096 unless
@@ -53,20 +51,9 @@ pub struct CompareArgs {
     #[arg(value_name = "STUDENT")]
     student: PathBuf,
 
-    /// The largest per-channel difference, in byte levels (0-255), that counts as equal
-    #[arg(long, value_name = "N", default_value_t = Tolerance::default().levels)]
-    tolerance: u8,
-
-    /// The share of pixels, in percent, that may differ beyond the tolerance on pixels
-    /// the reference is sure of while the images still match [default: 0]
-    #[arg(long, value_name = "PCT", value_parser = percent)]
-    allow: Option<f64>,
-
-    /// The arithmetic a correct tracer is granted: f32 (the default, single precision),
-    /// f64, or a relative precision such as 1e-6. Pixels whose decisions came closer than
-    /// this to going the other way are fragile, and a difference there is excused
-    #[arg(long, value_name = "f32|f64|NUMBER", value_parser = precision)]
-    precision: Option<f64>,
+    /// How close the student's image must be.
+    #[command(flatten)]
+    pub(super) close: Closeness,
 
     /// Print the report as JSON (keys: verdict, width, height, differing_pixels,
     /// fragile_pixels, differing_fragile_pixels, differing_fraction,
@@ -110,6 +97,36 @@ pub struct CompareArgs {
     how: HowArgs,
 }
 
+/// How close a student's image must be: what `compare` and `grade` share.
+#[derive(clap::Args, Debug)]
+pub struct Closeness {
+    /// The largest per-channel difference, in byte levels (0-255), that counts as equal
+    #[arg(long, value_name = "N", default_value_t = Tolerance::default().levels)]
+    pub tolerance: u8,
+
+    /// The share of pixels, in percent, that may differ beyond the tolerance on pixels
+    /// the reference is sure of while the images still match [default: 0]
+    #[arg(long, value_name = "PCT", value_parser = percent)]
+    pub allow: Option<f64>,
+
+    /// The arithmetic a correct tracer is granted: f32 (the default, single precision),
+    /// f64, or a relative precision such as 1e-6. Pixels whose decisions came closer than
+    /// this to going the other way are fragile, and a difference there is excused
+    #[arg(long, value_name = "f32|f64|NUMBER", value_parser = precision)]
+    pub precision: Option<f64>,
+}
+
+impl Closeness {
+    /// The tolerance, with `levels` instead of `--tolerance` if given.
+    pub fn tolerance(&self, levels: Option<u8>) -> Tolerance {
+        Tolerance {
+            levels: levels.unwrap_or(self.tolerance),
+            allow: self.allow.unwrap_or(Tolerance::default().allow * 100.0) / 100.0,
+            precision: self.precision.unwrap_or(Tolerance::default().precision),
+        }
+    }
+}
+
 /// Parses `--allow`, a percentage.
 fn percent(text: &str) -> Result<f64, String> {
     match text.trim_end_matches('%').parse::<f64>() {
@@ -135,7 +152,7 @@ fn precision(text: &str) -> Result<f64, String> {
 }
 
 /// Parses `--max-pixels`, a positive count.
-fn max_pixels(text: &str) -> Result<u64, String> {
+pub(super) fn max_pixels(text: &str) -> Result<u64, String> {
     match text.replace('_', "").parse::<u64>() {
         Ok(n) if n > 0 => Ok(n),
         _ => Err("expected a whole number of pixels, such as 16777216 (4096x4096)".to_string()),
@@ -155,7 +172,11 @@ fn first_bytes(file: &mut File, shown: &str) -> Result<Vec<u8>, Failure> {
 
 /// An image file (a regular file, decoded from the disk as it is read), or exit 2 naming
 /// it and what is wrong.
-fn read_image(path: &Path, role: &str, max_pixels: u64) -> Result<legacy_rt::Image, Failure> {
+pub(super) fn read_image(
+    path: &Path,
+    role: &str,
+    max_pixels: u64,
+) -> Result<legacy_rt::Image, Failure> {
     let file = open_regular(path)?;
     let shown = escaped(&path.display().to_string());
     compare::read::image_named(BufReader::new(file), max_pixels, &shown, role)
@@ -191,11 +212,7 @@ fn run_inner(args: &CompareArgs) -> Result<bool, Failure> {
     let is_scene = content(&first_bytes(&mut first, &shown)?) == Content::Text;
     let student = read_image(&args.student, "student's image", args.max_pixels)?;
     let settings = Settings {
-        tolerance: Tolerance {
-            levels: args.tolerance,
-            allow: args.allow.unwrap_or(Tolerance::default().allow * 100.0) / 100.0,
-            precision: args.precision.unwrap_or(Tolerance::default().precision),
-        },
+        tolerance: args.close.tolerance(None),
         worst: args.worst,
         diagnose: args.diagnose,
     };
@@ -244,21 +261,32 @@ fn run_inner(args: &CompareArgs) -> Result<bool, Failure> {
     let choices = options.is_some().then_some(choices);
     if let Some((options, choices)) = options.as_ref().zip(choices.as_ref()) {
         let scene = args.reference.display().to_string();
-        let command = |x, y| compare::text::trace_command(choices, options, &scene, x, y);
-        for worst in &mut report.worst {
-            worst.trace = Some(command(worst.x, worst.y));
-        }
-        for found in report.diagnosis.iter_mut().flatten() {
-            found.trace = found.pixel.map(|[x, y]| command(x, y));
-        }
+        add_trace_commands(&mut report, choices, options, &scene);
     }
     if let Some(diff) = diff {
-        let image = compare::diff_image(&reference, &student, args.tolerance)
+        let image = compare::diff_image(&reference, &student, args.close.tolerance)
             .map_err(|error| Failure(format!("error: {error}"), 2))?;
         write_image(&image, diff.format, Some(diff))?;
     }
     emit_report(args, &report, &shown, &student_shown, choices.as_ref())?;
     Ok(report.verdict == Verdict::Match)
+}
+
+/// Gives the report's worst pixels and diagnoses the `trace` commands that explain them
+/// in the reference rendered from the scene file `scene` with `choices` and `options`.
+pub(super) fn add_trace_commands(
+    report: &mut compare::Report,
+    choices: &legacy_rt::render::Choices,
+    options: &legacy_rt::Options,
+    scene: &str,
+) {
+    let command = |x, y| compare::text::trace_command(choices, options, scene, x, y);
+    for worst in &mut report.worst {
+        worst.trace = Some(command(worst.x, worst.y));
+    }
+    for found in report.diagnosis.iter_mut().flatten() {
+        found.trace = found.pixel.map(|[x, y]| command(x, y));
+    }
 }
 
 /// Prints the report, as text or JSON, on standard output.

@@ -1,6 +1,7 @@
 //! The command line: its arguments, and the commands that run the library for them.
 
 pub mod compare;
+pub mod grade;
 pub mod interrupt;
 pub mod io;
 pub mod render;
@@ -36,6 +37,7 @@ Examples:
   legacy-rt trace 320 240 < scene.txt          why pixel (320, 240) is what it is
   legacy-rt trace 320 240 --format course < scene.txt   as the course's DBG_ output
   legacy-rt compare --diagnose scene.txt mine.ppm   why a student's image differs
+  legacy-rt grade scenes/ submissions/ -o report/   a whole class, with a report
 
 The scene is read from standard input; the image goes to standard output (or -o FILE);
 errors go to standard error with the line and column to fix, and then nothing at all is
@@ -82,6 +84,12 @@ pub enum Command {
     /// for each, and with --diagnose the mistake that explains the difference
     #[command(after_help = compare::EXAMPLES)]
     Compare(compare::CompareArgs),
+
+    /// Grade a class: every student's image of every scene, each pair as `compare
+    /// --diagnose` grades it, each reference rendered once; the grades as CSV and JSON, a
+    /// page to look over (REPORT/index.html) and, if asked, Gradescope's results.json
+    #[command(after_help = grade::EXAMPLES)]
+    Grade(grade::GradeArgs),
 }
 
 /// What rendering takes.

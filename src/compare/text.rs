@@ -228,90 +228,107 @@ pub fn text(report: &Report, reference: &str, student: &str, choices: Option<&Ch
             line(text);
         }
     }
-    if let Some(diagnosis) = &report.diagnosis {
+    let diagnosis = diagnosis(report);
+    if !diagnosis.is_empty() {
         line(String::new());
-        if diagnosis.is_empty() {
-            line(
-                match report.differing_pixels {
-                    0 => "diagnosis: nothing to explain, every pixel is within the tolerance",
-                    _ => "diagnosis: no variant explains the differences better than the reference",
-                }
-                .to_string(),
+        for text in diagnosis {
+            line(text);
+        }
+    }
+    out
+}
+
+/// The diagnosis's lines of the report (empty without `--diagnose`): the variants that
+/// explain the student's image, the sentence that names one object's or light's
+/// mistake, or where the differences concentrate, and the advice to read the student's
+/// own trace with `--against`. `compare`'s text ends with them; `grade`'s report shows
+/// them for each pair.
+pub fn diagnosis(report: &Report) -> Vec<String> {
+    let mut out = Vec::new();
+    let mut line = |text: String| out.push(text);
+    let Some(diagnosis) = &report.diagnosis else {
+        return out;
+    };
+    if diagnosis.is_empty() {
+        line(
+            match report.differing_pixels {
+                0 => "diagnosis: nothing to explain, every pixel is within the tolerance",
+                _ => "diagnosis: no variant explains the differences better than the reference",
+            }
+            .to_string(),
+        );
+    } else {
+        let before = diagnosis[0].agreement_before;
+        line(format!(
+            "diagnosis: the reference agrees with {} of the student's pixels; rendered as \
+             if with",
+            agreement(before)
+        ));
+        for found in diagnosis {
+            let ids: Vec<String> = found.variants.iter().map(|v| v.id()).collect();
+            let ids = ids.join(",");
+            let about: Vec<String> = found.variants.iter().map(|v| v.describe()).collect();
+            line(format!(
+                "  --variant {ids}: {} ({})",
+                agreement(found.agreement_after),
+                about.join("; ")
+            ));
+        }
+        // The best, when it is one record's edit that explains nearly everything, in
+        // words a student acts on.
+        let best = &diagnosis[0];
+        if let (Some(subject), [variant]) = (&best.subject, best.variants.as_slice())
+            && best.agreement_after >= LOCALISED
+        {
+            let (what, look) = advice(*variant);
+            let mut sentence = format!(
+                "your image agrees with the reference at {} if {subject} {what}: look at {look}",
+                agreement(best.agreement_after)
             );
-        } else {
-            let before = diagnosis[0].agreement_before;
-            line(format!(
-                "diagnosis: the reference agrees with {} of the student's pixels; rendered as \
-                 if with",
-                agreement(before)
-            ));
-            for found in diagnosis {
-                let ids: Vec<String> = found.variants.iter().map(|v| v.id()).collect();
-                let ids = ids.join(",");
-                let about: Vec<String> = found.variants.iter().map(|v| v.describe()).collect();
-                line(format!(
-                    "  --variant {ids}: {} ({})",
-                    agreement(found.agreement_after),
-                    about.join("; ")
-                ));
+            if let Some(trace) = &best.trace {
+                sentence += &format!("; `{trace}` shows one");
             }
-            // The best, when it is one record's edit that explains nearly everything, in
-            // words a student acts on.
-            let best = &diagnosis[0];
-            if let (Some(subject), [variant]) = (&best.subject, best.variants.as_slice())
-                && best.agreement_after >= LOCALISED
-            {
-                let (what, look) = advice(*variant);
-                let mut sentence = format!(
-                    "your image agrees with the reference at {} if {subject} {what}: look at {look}",
-                    agreement(best.agreement_after)
-                );
-                if let Some(trace) = &best.trace {
-                    sentence += &format!("; `{trace}` shows one");
-                }
-                line(sentence);
-            }
+            line(sentence);
         }
-        if let Some(focus) = &report.focus
-            && diagnosis
-                .first()
-                .is_none_or(|best| best.agreement_after < LOCALISED)
-        {
-            let part = |share: f64, what: &str| {
-                (share > 0.0).then(|| format!("{} {what}", percent_of(share)))
-            };
-            let parts: Vec<String> = [
-                part(focus.camera, "where the camera ray hits it"),
-                part(focus.shadow, "where it blocks a shadow ray"),
-                part(focus.mirror, "where a mirror shows it"),
-            ]
-            .into_iter()
-            .flatten()
-            .collect();
-            line(format!(
-                "the differences concentrate on {}: {} of the differing pixels involve it ({})",
-                focus.object,
-                percent_of(focus.share),
-                parts.join(", ")
-            ));
-        }
-        // The student's own program can say where it leaves the reference, number by
-        // number: its DBG_ trace of a differing pixel, read with --against.
-        // The pixel named just above if there is one, else the worst.
-        let named = diagnosis
+    }
+    if let Some(focus) = &report.focus
+        && diagnosis
             .first()
-            .filter(|best| best.subject.is_some() && best.agreement_after >= LOCALISED)
-            .and_then(|best| best.trace.as_ref());
-        let worst = report.worst.iter().find_map(|w| w.trace.as_ref());
-        if let Some(command) = named.or(worst)
-            && let Some((command, scene)) = command.split_once(" < ")
-        {
-            line(format!(
-                "to find the first number where your program goes wrong, build it with its \
-                 DBG_ flags, run it with 2> dbg.txt and run: `{command} --against dbg.txt < \
-                 {scene}` (docs/trace.md)"
-            ));
-        }
+            .is_none_or(|best| best.agreement_after < LOCALISED)
+    {
+        let part =
+            |share: f64, what: &str| (share > 0.0).then(|| format!("{} {what}", percent_of(share)));
+        let parts: Vec<String> = [
+            part(focus.camera, "where the camera ray hits it"),
+            part(focus.shadow, "where it blocks a shadow ray"),
+            part(focus.mirror, "where a mirror shows it"),
+        ]
+        .into_iter()
+        .flatten()
+        .collect();
+        line(format!(
+            "the differences concentrate on {}: {} of the differing pixels involve it ({})",
+            focus.object,
+            percent_of(focus.share),
+            parts.join(", ")
+        ));
+    }
+    // The student's own program can say where it leaves the reference, number by
+    // number: its DBG_ trace of a differing pixel, read with --against.
+    // The pixel named just above if there is one, else the worst.
+    let named = diagnosis
+        .first()
+        .filter(|best| best.subject.is_some() && best.agreement_after >= LOCALISED)
+        .and_then(|best| best.trace.as_ref());
+    let worst = report.worst.iter().find_map(|w| w.trace.as_ref());
+    if let Some(command) = named.or(worst)
+        && let Some((command, scene)) = command.split_once(" < ")
+    {
+        line(format!(
+            "to find the first number where your program goes wrong, build it with its \
+             DBG_ flags, run it with 2> dbg.txt and run: `{command} --against dbg.txt < \
+             {scene}` (docs/trace.md)"
+        ));
     }
     out
 }

@@ -20,6 +20,8 @@ mod degenerate;
 mod docs;
 // The course notes' errors, each shown by a test.
 mod errata;
+// `grade`: a class made in the test; every row is compare's word on its pair.
+mod grade;
 // Every invalid input under tests/invalid/ gives a located error.
 mod errors;
 // Every example scene loads; its dump and image are snapshots.

@@ -13,8 +13,11 @@
 //   6. a dropped image made with a known mistake (--variant) gets the command line's
 //      compare report, which names that variant, and a diff image over the canvas;
 //   7. a student's own debug trace pasted beside a clicked pixel gets `trace --against`'s
-//      report: the planted first difference, agreement, or the refusal of another pixel.
-// --screenshot FILE saves the page with a traced pixel (docs/web-page.png is one).
+//      report: the planted first difference, agreement, or the refusal of another pixel;
+//   8. `legacy-rt grade`'s report (index.html), opened from disk: no console error, every
+//      image loads, no request leaves the disk.
+// --screenshot FILE saves the page with a traced pixel (docs/web-page.png is one);
+// --grade-screenshot FILE the top of grade's report (docs/grade-report.png).
 // --bench times 640x480 renders of the course scenes in the page's worker (the render
 // call alone) against the native binary on one thread (target/release/legacy-rt, CPU
 // time of the whole run, loading included), medians of 5, alternated run by run.
@@ -32,6 +35,8 @@ const top = join(web, '..');
 const args = process.argv.slice(2);
 const screenshot = args.includes('--screenshot') ? args[args.indexOf('--screenshot') + 1] : null;
 const bench = args.includes('--bench');
+const gradeScreenshot = args.includes('--grade-screenshot')
+  ? args[args.indexOf('--grade-screenshot') + 1] : null;
 const binary = process.env.LEGACY_RT ?? join(top, 'target/debug/legacy-rt');
 // The files the test writes (images made by the command line, downloads); removed at the end.
 const scratch = mkdtempSync(join(tmpdir(), 'legacy-rt-web-'));
@@ -360,6 +365,54 @@ async function readsAStudentsTrace(page) {
   console.log(`ok 7 - a pasted trace of pixel (${x}, ${y}) is read as trace --against reads it: ${planted.shown.split('\n')[0].slice(0, 80)}…`);
 }
 
+// 8. `legacy-rt grade`'s report, opened from disk as an instructor opens it: no console
+// error, every image it names loads (the lazy ones made eager), nothing from the network.
+async function gradeReportLoads(browser, file) {
+  const folder = join(scratch, 'class');
+  mkdirSync(join(folder, 'scenes'), { recursive: true });
+  const made = (scene, student, argv, name) => {
+    mkdirSync(join(folder, 'subs', student), { recursive: true });
+    const out = legacyRt([...argv, '-o', join('subs', student, name)],
+      { input: readFileSync(join(top, 'examples', `${scene}.txt`)), cwd: folder });
+    assert.equal(out.status, 0, out.stderr);
+  };
+  for (const scene of ['spheres', 'studio']) {
+    writeFileSync(join(folder, 'scenes', `${scene}.txt`), readFileSync(join(top, 'examples', `${scene}.txt`)));
+    made(scene, 'ada', ['160', '120'], `${scene}.ppm`);
+    made(scene, 'bo', ['160', '120', '--variant', 'no-shadows'], `${scene}.png`);
+    made(scene, 'cy', ['160', '120', '--variant', 'square-falloff'], `${scene}.ppm`);
+  }
+  made('studio', 'di', ['120', '90'], 'studio.ppm');
+  writeFileSync(join(folder, 'subs', 'di', 'spheres.ppm'), 'not an image');
+  const graded = legacyRt(['grade', 'scenes', 'subs', '-o', 'report'], { cwd: folder });
+  assert.equal(graded.status, 0, graded.stderr);
+  const page = await browser.newPage({ viewport: { width: 1100, height: 900 } });
+  const problems = [];
+  page.on('pageerror', (error) => problems.push(error.message));
+  page.on('console', (message) => message.type() === 'error' && problems.push(message.text()));
+  const requests = [];
+  page.on('request', (request) => requests.push(request.url()));
+  await page.goto(`file://${join(folder, 'report', 'index.html')}`);
+  const images = await page.evaluate(async () => {
+    const all = [...document.images];
+    for (const img of all) img.loading = 'eager';
+    const loaded = await Promise.all(all.map((img) => img.decode().then(() => img.naturalWidth > 0, () => false)));
+    return { count: all.length, broken: all.filter((_, i) => !loaded[i]).map((img) => img.getAttribute('src')) };
+  });
+  assert.deepEqual(images.broken, [], 'every image of the report loads');
+  assert.ok(images.count >= 3 * 7, `${images.count} images`);
+  assert.deepEqual(problems, [], 'no console error');
+  assert.deepEqual(requests.filter((url) => !url.startsWith('file://')), [], 'nothing from the network');
+  const cells = await page.$$eval('table.grades td.differ, table.grades td.match', (tds) => tds.length);
+  assert.ok(cells >= 6, `${cells} graded cells`);
+  if (file) {
+    await page.screenshot({ path: file, clip: { x: 0, y: 0, width: 1100, height: 900 } });
+    console.log(`screenshot: ${file}`);
+  }
+  await page.close();
+  console.log(`ok 8 - grade's report opens from disk: ${images.count} images load, no console error`);
+}
+
 // The page showing the gallery of quadrics with a traced pixel, for the docs: a fresh
 // page, so that nothing of the tests shows.
 async function takeScreenshot(browser, url, file) {
@@ -448,6 +501,7 @@ async function main() {
     await tracesAClickedPixel(page, 'spheres.txt');
     await namesTheMistake(page, 'spheres.txt', 'square-falloff');
     await readsAStudentsTrace(page);
+    await gradeReportLoads(browser, gradeScreenshot);
     if (screenshot) await takeScreenshot(browser, url, screenshot);
     assert.deepEqual(problems, [], 'no uncaught error on the page');
   } finally {

@@ -1,0 +1,366 @@
+//! The report folder and its files: each written whole (to a hidden file beside it, then
+//! renamed over), so that an interrupted run leaves no half file and a symbolic link
+//! planted in the folder is replaced, not written through.
+
+use super::super::Failure;
+use super::super::io::{MAX_INPUT, open_regular, read_all};
+use super::{Grades, Images, Row, html};
+use legacy_rt::compare::{self, Reference};
+use legacy_rt::error::escaped;
+use legacy_rt::{Image, image_output};
+use std::collections::HashSet;
+use std::fs;
+use std::path::{Component, Path, PathBuf};
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+/// The largest side of the report's small images; larger images are scaled down.
+const THUMBNAIL: (u32, u32) = (240, 180);
+
+/// The report folder, checked before anything is graded.
+pub struct Folder {
+    root: PathBuf,
+    /// Images already copied by `--merge` (a reference is shared by many rows).
+    copied: Mutex<HashSet<String>>,
+}
+
+/// A failure to write under the report folder.
+fn cannot_write(path: &Path, error: impl std::fmt::Display) -> Failure {
+    Failure(
+        format!(
+            "error: cannot write {}: {error}",
+            escaped(&path.display().to_string())
+        ),
+        2,
+    )
+}
+
+/// A number for each temporary file of this process.
+static PARTIAL: AtomicUsize = AtomicUsize::new(0);
+
+/// Writes `bytes` to `path` whole: to a hidden file in its folder, then renamed over it.
+fn put(path: &Path, bytes: &[u8]) -> Result<(), Failure> {
+    let name = path.file_name().unwrap_or_default().to_string_lossy();
+    let n = PARTIAL.fetch_add(1, Ordering::Relaxed);
+    let partial = path.with_file_name(format!(".{name}.partial-{}-{n}", std::process::id()));
+    let result = fs::write(&partial, bytes).and_then(|()| fs::rename(&partial, path));
+    if let Err(error) = result {
+        let _ = fs::remove_file(&partial);
+        return Err(cannot_write(path, error));
+    }
+    Ok(())
+}
+
+/// `path` made absolute and resolved as far as it exists.
+fn resolved(path: &Path) -> PathBuf {
+    if let Ok(path) = fs::canonicalize(path) {
+        return path;
+    }
+    match (path.parent(), path.file_name()) {
+        (Some(parent), Some(name)) => {
+            let parent = match parent.as_os_str().is_empty() {
+                true => Path::new("."),
+                false => parent,
+            };
+            resolved(parent).join(name)
+        }
+        _ => path.to_path_buf(),
+    }
+}
+
+/// A name as one safe path component: letters, digits, `-` and `_` as they are, every
+/// other byte as `~XX`, so that two names never share a file and none climbs out.
+fn component(name: &str) -> String {
+    let mut out = String::new();
+    for byte in name.bytes() {
+        match byte {
+            b'a'..=b'z' | b'A'..=b'Z' | b'0'..=b'9' | b'-' | b'_' => out.push(byte as char),
+            _ => out.push_str(&format!("~{byte:02X}")),
+        }
+    }
+    out
+}
+
+/// The image as a PNG no larger than [`THUMBNAIL`].
+fn thumbnail(image: &Image) -> Result<Vec<u8>, String> {
+    let (w, h) = (image.width as u32, image.height as u32);
+    let scale = f64::min(
+        1.0,
+        f64::min(
+            f64::from(THUMBNAIL.0) / f64::from(w),
+            f64::from(THUMBNAIL.1) / f64::from(h),
+        ),
+    );
+    let small = match scale < 1.0 {
+        true => {
+            let flat: Vec<u8> = image.pixels.iter().flatten().copied().collect();
+            let full = image::RgbImage::from_raw(w, h, flat).ok_or("the image's size")?;
+            let (tw, th) = (
+                ((f64::from(w) * scale) as u32).max(1),
+                ((f64::from(h) * scale) as u32).max(1),
+            );
+            let small = image::imageops::thumbnail(&full, tw, th);
+            Image {
+                width: tw as usize,
+                height: th as usize,
+                pixels: small.pixels().map(|p| p.0).collect(),
+            }
+        }
+        false => image.clone(),
+    };
+    image_output::png(&small).map_err(|error| error.to_string())
+}
+
+/// Fails unless `path` can be written as a file: the Gradescope file's path, checked
+/// before grading.
+pub fn check_file(path: &Path) -> Result<PathBuf, Failure> {
+    let shown = escaped(&path.display().to_string());
+    if path.is_dir() {
+        return Err(Failure(
+            format!("error: {shown} is a folder, not a file"),
+            2,
+        ));
+    }
+    let parent = path.parent().filter(|p| !p.as_os_str().is_empty());
+    if parent.is_some_and(|p| !p.is_dir()) {
+        return Err(Failure(
+            format!("error: cannot write {shown}: its folder does not exist"),
+            2,
+        ));
+    }
+    Ok(path.to_path_buf())
+}
+
+impl Folder {
+    /// Checks the report folder `root`: new, empty, or an earlier report
+    /// (it holds grades.json), and neither inside nor around the folders read (`inputs`),
+    /// whose files it would otherwise be graded with or write over.
+    pub fn check(root: &Path, inputs: &[&PathBuf]) -> Result<Folder, Failure> {
+        let shown = escaped(&root.display().to_string());
+        let refuse = |why: String| Failure(format!("error: -o {shown}: {why}"), 2);
+        let at = resolved(root);
+        for input in inputs {
+            let input_at = resolved(input);
+            if at.starts_with(&input_at) || input_at.starts_with(&at) {
+                return Err(refuse(format!(
+                    "the report folder must be outside {} and not hold it",
+                    escaped(&input.display().to_string())
+                )));
+            }
+        }
+        match fs::metadata(root) {
+            Ok(m) if !m.is_dir() => return Err(refuse("it is not a folder".into())),
+            Ok(_) => {
+                let empty = fs::read_dir(root)
+                    .map_err(|error| refuse(error.to_string()))?
+                    .next()
+                    .is_none();
+                if !empty && !root.join("grades.json").is_file() {
+                    return Err(refuse(
+                        "it holds files and no grades.json of an earlier report; give a new \
+                         or empty folder"
+                            .into(),
+                    ));
+                }
+            }
+            Err(_) => {}
+        }
+        Ok(Folder {
+            root: root.to_path_buf(),
+            copied: Mutex::new(HashSet::new()),
+        })
+    }
+
+    /// Creates the folder and its images/, once what is graded has been read: a run
+    /// that fails before leaves nothing behind.
+    pub fn create(&self) -> Result<(), Failure> {
+        let images = self.root.join("images");
+        fs::create_dir_all(&images).map_err(|error| cannot_write(&images, error))
+    }
+
+    /// The reference's image path under the folder, for scene `name` at its size.
+    fn reference_path(name: &str, width: usize, height: usize) -> String {
+        format!("images/reference/{}-{width}x{height}.png", component(name))
+    }
+
+    /// Writes the small image of the reference of scene `name`.
+    pub fn reference_image(&self, name: &str, image: &Image) -> Result<(), Failure> {
+        let relative = Self::reference_path(name, image.width, image.height);
+        self.put_image(&relative, image)
+    }
+
+    fn put_image(&self, relative: &str, image: &Image) -> Result<(), Failure> {
+        let path = self.root.join(relative);
+        if let Some(parent) = path.parent() {
+            fs::create_dir_all(parent).map_err(|error| cannot_write(parent, error))?;
+        }
+        let png = thumbnail(image).map_err(|error| cannot_write(&path, error))?;
+        put(&path, &png)
+    }
+
+    /// Writes a pair's small images, the student's and (with a reference) the diff, and
+    /// says where they and the reference's are.
+    pub fn pair_images(
+        &self,
+        student: &str,
+        scene: &str,
+        image: &Image,
+        reference: Option<&Reference>,
+        levels: u8,
+    ) -> Result<Images, Failure> {
+        let folder = format!("images/{}", component(student));
+        let own = format!("{folder}/{}.png", component(scene));
+        self.put_image(&own, image)?;
+        let mut images = Images {
+            reference: None,
+            student: own,
+            diff: None,
+        };
+        if let Some(reference) = reference {
+            let diff = format!("{folder}/{}-diff.png", component(scene));
+            let drawn = compare::diff_image(reference, image, levels)
+                .map_err(|error| Failure(format!("error: {error}"), 2))?;
+            self.put_image(&diff, &drawn)?;
+            images.diff = Some(diff);
+            let (w, h) = (reference.image.width, reference.image.height);
+            images.reference = Some(Self::reference_path(scene, w, h));
+        }
+        Ok(images)
+    }
+
+    /// grades.csv, grades.json and index.html.
+    pub fn write_grades(&self, grades: &Grades) -> Result<(), Failure> {
+        let csv_path = self.root.join("grades.csv");
+        put(
+            &csv_path,
+            &csv(grades).map_err(|e| cannot_write(&csv_path, e))?,
+        )?;
+        let json_path = self.root.join("grades.json");
+        let json = serde_json::to_vec_pretty(grades).map_err(|e| cannot_write(&json_path, e))?;
+        put(&json_path, &json)?;
+        put(&self.root.join("index.html"), html::page(grades).as_bytes())
+    }
+
+    /// A part's row with its images copied from the part's folder `part` into this one.
+    pub fn copy_images(&self, part: &Path, row: Row) -> Result<Row, Failure> {
+        let Some(images) = &row.images else {
+            return Ok(row);
+        };
+        let paths = [
+            Some(&images.student),
+            images.reference.as_ref(),
+            images.diff.as_ref(),
+        ];
+        for relative in paths.into_iter().flatten() {
+            let inside = Path::new(relative)
+                .components()
+                .all(|c| matches!(c, Component::Normal(_)));
+            if !inside || !relative.starts_with("images/") {
+                return Err(Failure(
+                    format!(
+                        "error: {} names an image outside its images/: {}",
+                        escaped(&part.join("grades.json").display().to_string()),
+                        escaped(relative)
+                    ),
+                    2,
+                ));
+            }
+            if !self
+                .copied
+                .lock()
+                .expect("not poisoned")
+                .insert(relative.clone())
+            {
+                continue;
+            }
+            let from = part.join(relative);
+            let bytes = read_all(open_regular(&from)?, &from, MAX_INPUT)?;
+            let to = self.root.join(relative);
+            if let Some(parent) = to.parent() {
+                fs::create_dir_all(parent).map_err(|error| cannot_write(parent, error))?;
+            }
+            put(&to, &bytes)?;
+        }
+        Ok(row)
+    }
+}
+
+/// grades.csv: a row per pair.
+fn csv(grades: &Grades) -> Result<Vec<u8>, csv::Error> {
+    let mut out = csv::Writer::from_writer(Vec::new());
+    out.write_record([
+        "student",
+        "scene",
+        "verdict",
+        "differing_pixels",
+        "diagnosis",
+        "points",
+        "max_points",
+        "width",
+        "height",
+        "file",
+        "message",
+    ])?;
+    let or_empty = |n: Option<usize>| n.map(|n| n.to_string()).unwrap_or_default();
+    for row in &grades.rows {
+        out.write_record([
+            row.student.as_str(),
+            &row.scene,
+            &row.verdict,
+            &or_empty(row.differing_pixels),
+            &row.diagnosis,
+            &row.points.to_string(),
+            &row.max_points.to_string(),
+            &or_empty(row.width),
+            &or_empty(row.height),
+            row.file.as_deref().unwrap_or_default(),
+            row.message.as_deref().unwrap_or_default(),
+        ])?;
+    }
+    out.into_inner().map_err(|error| error.into_error().into())
+}
+
+/// A part's grades.json.
+pub fn read_grades(part: &Path) -> Result<Grades, Failure> {
+    let path = part.join("grades.json");
+    let bytes = read_all(open_regular(&path)?, &path, MAX_INPUT)?;
+    serde_json::from_slice(&bytes).map_err(|error| {
+        Failure(
+            format!(
+                "error: {} is not a report of legacy-rt grade: {error}",
+                escaped(&path.display().to_string())
+            ),
+            2,
+        )
+    })
+}
+
+/// Gradescope's results.json for the one student of `grades`: a test per scene.
+pub fn gradescope(grades: &Grades, path: &Path) -> Result<(), Failure> {
+    let tests: Vec<serde_json::Value> = grades
+        .rows
+        .iter()
+        .map(|row| {
+            let output = match (&row.text, &row.message) {
+                (Some(text), _) => text.clone(),
+                (None, Some(message)) => format!("{}: {message}\n", row.verdict),
+                (None, None) => format!("{}\n", row.verdict),
+            };
+            serde_json::json!({
+                "name": row.scene,
+                "score": row.points,
+                "max_score": row.max_points,
+                "status": if row.verdict == "match" { "passed" } else { "failed" },
+                "output": output,
+            })
+        })
+        .collect();
+    let score: f64 = grades.rows.iter().map(|row| row.points).sum();
+    let results = serde_json::json!({
+        "score": score,
+        "output": format!("graded by legacy-rt grade {}", grades.options),
+        "tests": tests,
+    });
+    let bytes = serde_json::to_vec_pretty(&results).map_err(|error| cannot_write(path, error))?;
+    put(path, &bytes)
+}

@@ -1,0 +1,451 @@
+//! `legacy-rt grade`: a class made here, graded in one command; every row is what
+//! `compare --diagnose --json` says of that pair, run on its own.
+
+use super::common;
+use serde_json::Value;
+use std::fs;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+const SCENES: [&str; 2] = ["spheres", "studio"];
+
+/// Runs the binary in `dir` with `args`, nothing on standard input.
+fn run_in(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_legacy-rt"))
+        .args(args)
+        .current_dir(dir)
+        .stdin(std::process::Stdio::null())
+        .output()
+        .expect("the binary runs")
+}
+
+/// Renders scene `name` of the class in `dir` to `out` with extra `flags`.
+fn render(dir: &Path, name: &str, flags: &[&str], out: &str) {
+    let scene = fs::read(dir.join("scenes").join(format!("{name}.txt"))).unwrap();
+    let out = dir.join(out);
+    fs::create_dir_all(out.parent().unwrap()).unwrap();
+    let mut args = flags.to_vec();
+    let out = out.to_str().unwrap();
+    args.extend(["-o", out]);
+    let made = common::run(&args, &scene);
+    assert!(
+        made.status.success(),
+        "{}",
+        String::from_utf8_lossy(&made.stderr)
+    );
+}
+
+/// The same pixels as a P3 (text) PPM, as some students' programs write.
+fn as_p3(p6: &[u8]) -> Vec<u8> {
+    let text = String::from_utf8_lossy(&p6[..20]).to_string();
+    let mut header = text.split_ascii_whitespace();
+    assert_eq!(header.next(), Some("P6"));
+    let (w, h): (usize, usize) = (
+        header.next().unwrap().parse().unwrap(),
+        header.next().unwrap().parse().unwrap(),
+    );
+    let body = &p6[p6.len() - 3 * w * h..];
+    let mut out = format!("P3\n{w} {h}\n255\n");
+    for (i, byte) in body.iter().enumerate() {
+        out += &byte.to_string();
+        out.push(if i % 12 == 11 { '\n' } else { ' ' });
+    }
+    out.into_bytes()
+}
+
+/// A class: two example scenes, and students whose images are the reference, a
+/// single-precision textbook tracer's, two variants', a PNG, a P3, a smaller size,
+/// missing files, garbage, a truncated image and a folder where an image should be.
+fn class(name: &str) -> PathBuf {
+    let dir = common::folder(name);
+    fs::create_dir_all(dir.join("scenes")).unwrap();
+    for scene in SCENES {
+        let text = fs::read(format!("examples/{scene}.txt")).unwrap();
+        fs::write(dir.join("scenes").join(format!("{scene}.txt")), text).unwrap();
+        let size = ["80", "60"];
+        render(&dir, scene, &size, &format!("subs/ada/{scene}.ppm"));
+        let f32 = [&size[..], &["--kernel", "textbook-f32"]].concat();
+        render(&dir, scene, &f32, &format!("subs/bo/{scene}.ppm"));
+        let shadows = [&size[..], &["--variant", "no-shadows"]].concat();
+        render(&dir, scene, &shadows, &format!("subs/cy/{scene}.png"));
+        let falloff = [&size[..], &["--variant", "square-falloff"]].concat();
+        render(&dir, scene, &falloff, &format!("subs/di/{scene}.ppm"));
+        render(&dir, scene, &["40", "30"], &format!("subs/ed/{scene}.ppm"));
+        let p6 = fs::read(dir.join(format!("subs/ada/{scene}.ppm"))).unwrap();
+        fs::create_dir_all(dir.join("subs/fay")).unwrap();
+        fs::write(dir.join(format!("subs/fay/{scene}.ppm")), as_p3(&p6)).unwrap();
+    }
+    // gus: one scene missing, the other garbage; hal: truncated, and a folder.
+    fs::create_dir_all(dir.join("subs/gus")).unwrap();
+    fs::write(dir.join("subs/gus/studio.ppm"), b"not an image at all").unwrap();
+    fs::write(dir.join("subs/gus/notes.txt"), b"my report").unwrap();
+    let p6 = fs::read(dir.join("subs/ada/studio.ppm")).unwrap();
+    fs::create_dir_all(dir.join("subs/hal/spheres.ppm")).unwrap();
+    fs::write(dir.join("subs/hal/studio.ppm"), &p6[..p6.len() / 2]).unwrap();
+    dir
+}
+
+fn read_grades(report: &Path) -> Value {
+    serde_json::from_slice(&fs::read(report.join("grades.json")).unwrap()).unwrap()
+}
+
+/// Every row against `compare --diagnose --json` (with `flags`) on its pair.
+fn rows_are_compares(dir: &Path, grades: &Value, flags: &[&str]) {
+    for row in grades["rows"].as_array().unwrap() {
+        let scene = format!("scenes/{}.txt", row["scene"].as_str().unwrap());
+        let what = format!("{} {}", row["student"], row["scene"]);
+        let Some(file) = row["file"].as_str() else {
+            assert_eq!(row["verdict"], "missing", "{what}");
+            continue;
+        };
+        let args = [
+            &["compare", "--diagnose", "--json"][..],
+            flags,
+            &[&scene, file],
+        ]
+        .concat();
+        let compared = run_in(dir, &args);
+        match row["verdict"].as_str().unwrap() {
+            "unreadable" => {
+                assert_eq!(compared.status.code(), Some(2), "{what}");
+                let stderr = String::from_utf8_lossy(&compared.stderr);
+                let message = row["message"].as_str().unwrap();
+                assert_eq!(stderr.trim_end(), format!("error: {message}"), "{what}");
+            }
+            verdict => {
+                let report: Value = serde_json::from_slice(&compared.stdout).unwrap();
+                assert_eq!(row["compare"], report, "{what}");
+                assert_eq!(report["verdict"], verdict, "{what}");
+                let matched = verdict == "match";
+                assert_eq!(compared.status.code(), Some(if matched { 0 } else { 1 }));
+                let points = if matched {
+                    row["max_points"].as_f64()
+                } else {
+                    Some(0.0)
+                };
+                assert_eq!(row["points"].as_f64(), points, "{what}");
+                let top = report["diagnosis"][0]["variants"].as_array();
+                let ids: Vec<&str> = top
+                    .into_iter()
+                    .flatten()
+                    .map(|v| v.as_str().unwrap())
+                    .collect();
+                assert_eq!(row["diagnosis"], ids.join(","), "{what}");
+            }
+        }
+    }
+}
+
+#[test]
+fn every_row_is_what_compare_says_of_its_pair() {
+    let dir = class("grade-class");
+    let graded = run_in(
+        &dir,
+        &["grade", "--threads", "2", "scenes", "subs", "-o", "report"],
+    );
+    assert!(
+        graded.status.success(),
+        "{}",
+        String::from_utf8_lossy(&graded.stderr)
+    );
+    let grades = read_grades(&dir.join("report"));
+    let rows = grades["rows"].as_array().unwrap();
+    assert_eq!(rows.len(), 8 * SCENES.len());
+    rows_are_compares(&dir, &grades, &[]);
+    let verdict = |student: &str, scene: &str| {
+        let row = rows
+            .iter()
+            .find(|r| r["student"] == student && r["scene"] == scene);
+        row.unwrap()["verdict"].as_str().unwrap().to_string()
+    };
+    // What each student was made to be.
+    assert_eq!(verdict("ada", "studio"), "match");
+    assert_eq!(verdict("fay", "studio"), "match", "a P3 of the reference");
+    assert_eq!(
+        verdict("ed", "studio"),
+        "match",
+        "rendered at the student's size"
+    );
+    assert_eq!(verdict("cy", "studio"), "differ");
+    assert_eq!(verdict("gus", "spheres"), "missing");
+    assert_eq!(verdict("gus", "studio"), "unreadable");
+    assert_eq!(verdict("hal", "spheres"), "unreadable", "a folder");
+    assert_eq!(verdict("hal", "studio"), "unreadable", "truncated");
+    let cy = rows
+        .iter()
+        .find(|r| r["student"] == "cy" && r["scene"] == "studio")
+        .unwrap();
+    assert!(
+        cy["diagnosis"].as_str().unwrap().contains("no-shadows"),
+        "{}",
+        cy["diagnosis"]
+    );
+    assert_eq!(grades["unexpected"], serde_json::json!(["gus/notes.txt"]));
+
+    // The CSV says what the JSON says.
+    let mut csv = csv::Reader::from_path(dir.join("report/grades.csv")).unwrap();
+    let headers = csv.headers().unwrap().clone();
+    let wanted = [
+        "student",
+        "scene",
+        "verdict",
+        "differing_pixels",
+        "diagnosis",
+        "points",
+        "max_points",
+    ];
+    assert_eq!(headers.iter().take(7).collect::<Vec<_>>(), wanted);
+    let records: Vec<csv::StringRecord> = csv.records().map(Result::unwrap).collect();
+    assert_eq!(records.len(), rows.len());
+    for (record, row) in records.iter().zip(rows) {
+        for (i, key) in wanted.iter().enumerate() {
+            let json = match &row[key] {
+                Value::Null => String::new(),
+                Value::String(s) => s.clone(),
+                other => other.to_string().trim_end_matches(".0").to_string(),
+            };
+            assert_eq!(&record[i], json, "{key} of {record:?}");
+        }
+    }
+
+    // Every image the page names is a file of the report, and each pair with an image
+    // has the student's image, and with a reference the reference and the diff.
+    let page = fs::read_to_string(dir.join("report/index.html")).unwrap();
+    let sources: Vec<&str> = page
+        .split("src=\"")
+        .skip(1)
+        .map(|s| s.split('"').next().unwrap())
+        .collect();
+    assert!(sources.len() >= 3 * 10, "{} images", sources.len());
+    for source in &sources {
+        let file = dir.join("report").join(source);
+        let bytes = fs::read(&file).unwrap_or_else(|_| panic!("{source} is named and missing"));
+        assert_eq!(&bytes[1..4], b"PNG", "{source}");
+    }
+    assert!(!page.contains("http"), "no network");
+    fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn a_required_size_makes_other_sizes_wrong_size() {
+    let dir = class("grade-size");
+    let args = [
+        "grade", "--size", "80", "60", "scenes", "subs", "-o", "report",
+    ];
+    let graded = run_in(&dir, &args);
+    assert!(
+        graded.status.success(),
+        "{}",
+        String::from_utf8_lossy(&graded.stderr)
+    );
+    let grades = read_grades(&dir.join("report"));
+    rows_are_compares(&dir, &grades, &["--size", "80", "60"]);
+    for row in grades["rows"].as_array().unwrap() {
+        let expected = if row["student"] == "ed" {
+            "wrong-size"
+        } else {
+            ""
+        };
+        if !expected.is_empty() {
+            assert_eq!(row["verdict"], expected);
+            assert_eq!(row["points"].as_f64(), Some(0.0));
+        }
+    }
+    // A scheme: studio worth 3 points at 40x30, spheres 2 by default.
+    fs::write(
+        dir.join("points.toml"),
+        "points = 2\n[scenes.studio]\npoints = 3\nsize = [40, 30]\n",
+    )
+    .unwrap();
+    let args = [
+        "grade",
+        "--scheme",
+        "points.toml",
+        "scenes",
+        "subs",
+        "-o",
+        "schemed",
+    ];
+    let graded = run_in(&dir, &args);
+    assert!(
+        graded.status.success(),
+        "{}",
+        String::from_utf8_lossy(&graded.stderr)
+    );
+    let schemed = read_grades(&dir.join("schemed"));
+    for row in schemed["rows"].as_array().unwrap() {
+        let studio = row["scene"] == "studio";
+        assert_eq!(
+            row["max_points"].as_f64(),
+            Some(if studio { 3.0 } else { 2.0 })
+        );
+        if studio && row["width"] == 80 {
+            assert_eq!(row["verdict"], "wrong-size", "{}", row["student"]);
+        }
+        if row["student"] == "ed" && studio {
+            assert_eq!(row["verdict"], "match");
+            assert_eq!(row["points"].as_f64(), Some(3.0));
+        }
+    }
+    // A scheme naming a scene SCENES lacks is refused, naming it.
+    fs::write(dir.join("typo.toml"), "[scenes.studoi]\npoints = 3\n").unwrap();
+    let refused = run_in(
+        &dir,
+        &[
+            "grade",
+            "--scheme",
+            "typo.toml",
+            "scenes",
+            "subs",
+            "-o",
+            "typo",
+        ],
+    );
+    assert_eq!(refused.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&refused.stderr).contains("studoi"));
+    fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn shards_merged_equal_the_whole_class() {
+    let dir = class("grade-shards");
+    let whole = run_in(&dir, &["grade", "scenes", "subs", "-o", "whole"]);
+    assert!(
+        whole.status.success(),
+        "{}",
+        String::from_utf8_lossy(&whole.stderr)
+    );
+    let mut sizes = Vec::new();
+    for k in 1..=3 {
+        let shard = format!("{k}/3");
+        let part = format!("part{k}");
+        let graded = run_in(
+            &dir,
+            &["grade", "--shard", &shard, "scenes", "subs", "-o", &part],
+        );
+        assert!(
+            graded.status.success(),
+            "{}",
+            String::from_utf8_lossy(&graded.stderr)
+        );
+        sizes.push(
+            read_grades(&dir.join(&part))["rows"]
+                .as_array()
+                .unwrap()
+                .len(),
+        );
+    }
+    assert_eq!(sizes.iter().sum::<usize>(), 8 * SCENES.len(), "{sizes:?}");
+    assert!(sizes.iter().all(|&n| n > 0), "{sizes:?}");
+    let merged = run_in(
+        &dir,
+        &[
+            "grade", "--merge", "part3", "part1", "part2", "-o", "merged",
+        ],
+    );
+    assert!(
+        merged.status.success(),
+        "{}",
+        String::from_utf8_lossy(&merged.stderr)
+    );
+    assert_eq!(
+        read_grades(&dir.join("merged")),
+        read_grades(&dir.join("whole"))
+    );
+    assert_eq!(
+        fs::read(dir.join("merged/grades.csv")).unwrap(),
+        fs::read(dir.join("whole/grades.csv")).unwrap()
+    );
+    // Every image of the merged page was copied.
+    let page = fs::read_to_string(dir.join("merged/index.html")).unwrap();
+    for source in page
+        .split("src=\"")
+        .skip(1)
+        .map(|s| s.split('"').next().unwrap())
+    {
+        assert!(dir.join("merged").join(source).is_file(), "{source}");
+    }
+    // A part given twice is refused.
+    let twice = run_in(&dir, &["grade", "--merge", "part1", "part1", "-o", "twice"]);
+    assert_eq!(twice.status.code(), Some(2));
+    fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn gradescope_s_score_is_the_sum_of_its_tests() {
+    let dir = class("grade-gradescope");
+    // As an autograder gives it: one student's images directly in the folder.
+    let one = dir.join("submission");
+    fs::create_dir_all(&one).unwrap();
+    fs::copy(dir.join("subs/ada/spheres.ppm"), one.join("spheres.ppm")).unwrap();
+    fs::copy(dir.join("subs/cy/studio.png"), one.join("studio.png")).unwrap();
+    let args = [
+        "grade",
+        "--gradescope",
+        "results.json",
+        "scenes",
+        "submission",
+        "-o",
+        "report",
+    ];
+    let graded = run_in(&dir, &args);
+    assert!(
+        graded.status.success(),
+        "{}",
+        String::from_utf8_lossy(&graded.stderr)
+    );
+    let results: Value =
+        serde_json::from_slice(&fs::read(dir.join("results.json")).unwrap()).unwrap();
+    let tests = results["tests"].as_array().unwrap();
+    assert_eq!(tests.len(), SCENES.len());
+    let sum: f64 = tests.iter().map(|t| t["score"].as_f64().unwrap()).sum();
+    assert_eq!(results["score"].as_f64(), Some(sum));
+    assert_eq!(sum, 1.0);
+    let studio = tests.iter().find(|t| t["name"] == "studio").unwrap();
+    assert_eq!(studio["status"], "failed");
+    assert_eq!(studio["max_score"].as_f64(), Some(1.0));
+    let output = studio["output"].as_str().unwrap();
+    assert!(output.contains("--variant no-shadows"), "{output}");
+    assert!(output.contains("--against dbg.txt"), "{output}");
+    // Several students' folders are not one student's results.
+    let refused = run_in(
+        &dir,
+        &[
+            "grade",
+            "--gradescope",
+            "r.json",
+            "scenes",
+            "subs",
+            "-o",
+            "r",
+        ],
+    );
+    assert_eq!(refused.status.code(), Some(2));
+    assert!(!dir.join("r.json").exists());
+    fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn grade_refuses_what_it_cannot_read_or_would_overwrite() {
+    let dir = class("grade-refusals");
+    // The report inside the submissions would be graded as a student.
+    let inside = run_in(&dir, &["grade", "scenes", "subs", "-o", "subs/report"]);
+    assert_eq!(inside.status.code(), Some(2));
+    assert!(!dir.join("subs/report").exists());
+    // A folder of other files is not replaced.
+    fs::create_dir_all(dir.join("mine")).unwrap();
+    fs::write(dir.join("mine/thesis.tex"), b"years of work").unwrap();
+    let occupied = run_in(&dir, &["grade", "scenes", "subs", "-o", "mine"]);
+    assert_eq!(occupied.status.code(), Some(2));
+    assert_eq!(fs::read_dir(dir.join("mine")).unwrap().count(), 1);
+    // A scene that does not load is named.
+    fs::write(dir.join("scenes/broken.txt"), b"this is not a scene\n").unwrap();
+    let broken = run_in(&dir, &["grade", "scenes", "subs", "-o", "report"]);
+    assert_eq!(broken.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&broken.stderr).contains("broken.txt"));
+    // Folders that are not there.
+    let absent = run_in(&dir, &["grade", "nowhere", "subs", "-o", "report"]);
+    assert_eq!(absent.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&absent.stderr).contains("nowhere"));
+    fs::remove_dir_all(&dir).unwrap();
+}
