@@ -142,6 +142,25 @@ editor.addEventListener('scroll', () => {
   placeLineMark();
 });
 
+// The docs the library's messages name, as links to the copies the page is built with.
+const DOC = /docs\/[a-z-]+\.md/g;
+
+// Sets `element`'s text to `text`, with each docs/NAME.md it names a link.
+function showWithLinks(element, text) {
+  element.textContent = '';
+  let at = 0;
+  for (const match of text.matchAll(DOC)) {
+    element.append(text.slice(at, match.index));
+    const link = document.createElement('a');
+    link.href = match[0];
+    link.target = '_blank';
+    link.textContent = match[0];
+    element.append(link);
+    at = match.index + match[0].length;
+  }
+  element.append(text.slice(at));
+}
+
 function showError(error) {
   const box = $('error');
   if (!error) {
@@ -149,7 +168,7 @@ function showError(error) {
     delete box.dataset.line;
   } else {
     box.hidden = false;
-    $('error-text').textContent = error.message;
+    showWithLinks($('error-text'), error.message);
     if (error.line) box.dataset.line = error.line;
     else delete box.dataset.line;
   }
@@ -211,6 +230,7 @@ async function update() {
     shown();
     displayWidth(image.width);
     $('image').classList.remove('stale');
+    markStale(false);
     state.full = { width: image.width, height: image.height, ms: image.ms };
     const { lights, objects } = image.scene;
     $('status').textContent =
@@ -224,6 +244,7 @@ async function update() {
   } catch (error) {
     if (error.cancelled || !current()) return;
     $('image').classList.add('stale');
+    markStale(true);
     if (error.scene) {
       showError(error);
       $('status').textContent = `the scene has an error on line ${error.line}`;
@@ -233,6 +254,19 @@ async function update() {
     }
     setState('error');
   }
+}
+
+// What was computed from a scene that no longer loads (the diff, the report, the trace
+// and the student's trace read against it) is marked stale, or unmarked once it loads.
+function markStale(stale) {
+  for (const id of ['report', 'trace', 'trace-command', 'against-report']) {
+    if (stale) $(id).dataset.stale = 'the scene no longer loads: this was computed from its last version';
+    else delete $(id).dataset.stale;
+  }
+  // The diff would be drawn at full strength over a greyed image: hidden until it loads.
+  if (stale) $('diff').hidden = true;
+  else $('diff').hidden = !($('show-diff').checked && state.comparison);
+  $('diff-key').hidden = $('diff').hidden;
 }
 
 // When the first picture of a scene just opened is on the canvas: how long it took.
@@ -403,6 +437,11 @@ $('image').addEventListener('click', async (event) => {
   setState('tracing');
   try {
     await tracePixel(x, row);
+    // On a narrow screen the trace is below the image: show it.
+    const pane = $('trace-pane').getBoundingClientRect();
+    if (pane.top > window.innerHeight - 40 || pane.bottom < 0) {
+      $('trace-pane').scrollIntoView({ block: 'start' });
+    }
     setState('done');
   } catch (error) {
     if (error.cancelled) return;
@@ -429,17 +468,33 @@ async function compareStudent() {
       allow: Number($('allow').value) || 0,
       diagnose: $('diagnose').checked,
     });
+    const full = state.full;
+    if (full && (result.width !== full.width || result.height !== full.height)) {
+      // The report is of the student image's size: the page renders at that size too,
+      // so that the diff lies on the pixels it is of and a click traces what it shows.
+      $('width').value = String(result.width);
+      $('height').value = String(result.height);
+      $('size-note').textContent = `W and H set to ${result.width}x${result.height}, the size of ${name}: ` +
+        'the reference is compared at the size of the student\'s image.';
+      $('size-note').hidden = false;
+      state.comparison = null;
+      $('diff').hidden = true;
+      await update();
+      return;
+    }
     state.comparison = result;
     $('report').textContent = result.text;
     $('report').dataset.verdict = result.matches ? 'match' : 'differ';
     draw($('diff'), result.diff, result.width, result.height);
     $('diff').hidden = !$('show-diff').checked;
+    $('diff-key').hidden = $('diff').hidden;
   } catch (error) {
     if (error.cancelled) throw error;
     state.comparison = null;
     $('report').textContent = error.scene ? 'the scene has an error' : error.message;
     $('report').dataset.verdict = 'error';
     $('diff').hidden = true;
+    $('diff-key').hidden = true;
   }
 }
 
@@ -462,6 +517,7 @@ $('student').addEventListener('change', (event) => {
 });
 $('show-diff').addEventListener('change', () => {
   $('diff').hidden = !($('show-diff').checked && state.comparison);
+  $('diff-key').hidden = $('diff').hidden;
 });
 for (const id of ['tolerance', 'allow', 'diagnose']) {
   $(id).addEventListener('change', () => state.student && takeStudent(new File([state.student.bytes], state.student.name)));
@@ -585,6 +641,7 @@ function fill(select, names, chosen) {
 function variantControls(variants) {
   const input = document.createElement('input');
   input.id = 'variant-ids';
+  input.setAttribute('aria-label', 'Variant ids (--variant)');
   input.placeholder = 'ids, comma-separated, e.g. no-shadows,max-dist=40';
   input.style.width = '100%';
   const box = $('variants');
@@ -629,6 +686,8 @@ function forgetStudent() {
   state.comparison = null;
   $('report').hidden = true;
   $('diff').hidden = true;
+  $('diff-key').hidden = true;
+  $('size-note').hidden = true;
   $('forget-student').hidden = true;
 }
 

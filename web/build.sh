@@ -52,6 +52,10 @@ wasm-bindgen --target web --no-typescript --out-dir dist/pkg "$wasm"
 cp index.html style.css app.js worker.js dist/
 cp ../examples/*.txt dist/examples/
 cp ../examples/textures/*.ppm dist/examples/textures/
+# The docs that the library's messages name (docs/scene-format.md, ...): the page links
+# them, as the text they are.
+mkdir -p dist/docs
+cp ../docs/*.md dist/docs/
 python3 - <<'PY'
 import json, os
 scenes = sorted(f for f in os.listdir("dist/examples") if f.endswith(".txt"))

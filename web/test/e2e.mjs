@@ -15,9 +15,12 @@
 //   7. a student's own debug trace pasted beside a clicked pixel gets `trace --against`'s
 //      report: the planted first difference, agreement, or the refusal of another pixel;
 //   8. `legacy-rt grade`'s report (index.html), opened from disk: no console error, every
-//      image loads, no request leaves the disk.
+//      image loads, no request leaves the disk;
+//   9. at 1366x900 and 390x844 nothing is cut at the right, every control is labelled, and
+//      on a phone the image comes first and a tapped pixel's trace is scrolled into view.
 // --screenshot FILE saves the page with a traced pixel (docs/web-page.png is one);
-// --grade-screenshot FILE the top of grade's report (docs/grade-report.png).
+// --grade-screenshot FILE the top of grade's report (docs/grade-report.png);
+// --phone-screenshot FILE the page at 390x844 with a compared image (docs/web-phone.png).
 // --bench times 640x480 renders of the course scenes in the page's worker (the render
 // call alone) against the native binary on one thread (target/release/legacy-rt, CPU
 // time of the whole run, loading included), medians of 5, alternated run by run.
@@ -35,6 +38,8 @@ const top = join(web, '..');
 const args = process.argv.slice(2);
 const screenshot = args.includes('--screenshot') ? args[args.indexOf('--screenshot') + 1] : null;
 const bench = args.includes('--bench');
+const phoneScreenshot = args.includes('--phone-screenshot')
+  ? args[args.indexOf('--phone-screenshot') + 1] : null;
 const gradeScreenshot = args.includes('--grade-screenshot')
   ? args[args.indexOf('--grade-screenshot') + 1] : null;
 const binary = process.env.LEGACY_RT ?? join(top, 'target/debug/legacy-rt');
@@ -307,6 +312,78 @@ async function namesTheMistake(page, name, variant) {
   console.log(`ok 6 - an image made with --variant ${variant} is diagnosed as it`);
 }
 
+// The browser gives a click whole CSS pixels: the position, relative to an element
+// starting at `start`, of the first whole coordinate inside the image's pixel `offset`
+// (for a canvas shown at one CSS pixel per pixel).
+const inside = (start, offset) => Math.ceil(start + offset) - start + 0.05;
+
+// 6b. A student's image of another size than the page's: the page switches to that size
+// (saying so), so the diff lies on the pixels it is of, and a click on the report's
+// worst pixel traces that pixel, whose bytes are the report's reference bytes.
+async function comparesAtTheStudentsSize(page) {
+  const name = 'spheres.txt';
+  assert.equal(await openExample(page, name), 'done');
+  await page.fill('#height', '300');
+  assert.equal(await setAndRender(page, '#width', '320'), 'done');
+  const folder = scratch;
+  const text = readFileSync(join(top, 'examples', name));
+  writeFileSync(join(folder, name), text);
+  const made = legacyRt(['200', '150', '--variant', 'square-falloff', '-o', 'small.ppm'],
+    { input: text, cwd: folder });
+  assert.equal(made.status, 0, made.stderr);
+  await page.evaluate(() => { document.body.dataset.state = 'edited'; });
+  await page.setInputFiles('#student', { name: 'small.ppm', mimeType: 'image/x-portable-pixmap',
+    buffer: readFileSync(join(folder, 'small.ppm')) });
+  assert.equal(await settled(page), 'done');
+  await page.waitForFunction(() => window.legacyRt.state.comparison !== null);
+  assert.deepEqual(await page.evaluate(() => [window.legacyRt.state.full.width, window.legacyRt.state.full.height]), [200, 150]);
+  assert.deepEqual([await page.inputValue('#width'), await page.inputValue('#height')], ['200', '150']);
+  assert.match(await page.textContent('#size-note'), /200x150/);
+  const cli = legacyRt(['compare', '--diagnose', name, 'small.ppm'], { cwd: folder });
+  assert.equal(await page.textContent('#report'), cli.stdout.toString());
+  const json = JSON.parse(legacyRt(['compare', '--json', name, 'small.ppm'], { cwd: folder }).stdout);
+  const worst = json.worst[0];
+  const box = await page.locator('#image').boundingBox();
+  assert.equal(Math.round(box.width), 200, 'the canvas is shown at its size');
+  await page.evaluate(() => { document.body.dataset.state = 'edited'; });
+  await page.click('#image', { position: { x: inside(box.x, worst.x), y: inside(box.y, 150 - 1 - worst.y) } });
+  assert.equal(await settled(page), 'done');
+  assert.equal(await page.getAttribute('#trace-pane', 'data-pixel'), `${worst.x},${worst.y}`);
+  assert.equal(await page.getAttribute('#trace-pane', 'data-bytes'), worst.reference.join(' '));
+  console.log(`ok 6 - a 200x150 image compared on a 320x300 page: the page switches to 200x150, and the worst pixel (${worst.x}, ${worst.y}) traces to ${worst.reference.join(' ')}`);
+}
+
+// 3d. A scene that stops loading after a compare and a trace: the diff is hidden, the
+// report and the trace are marked stale, and the error's docs/scene-format.md is a link
+// to a file the page serves; once the scene loads again, nothing is marked.
+async function marksStaleResults(page) {
+  assert.equal(await page.isVisible('#diff'), true, 'a diff is shown');
+  const good = await page.inputValue('#scene');
+  const broken = readFileSync(join(top, 'tests/invalid/code_18_reflective_sphere.txt'), 'utf8');
+  await page.evaluate(() => { document.body.dataset.state = 'edited'; });
+  await page.fill('#scene', broken);
+  assert.equal(await settled(page), 'error');
+  assert.equal(await page.isVisible('#diff'), false, 'no diff over the stale image');
+  assert.equal(await page.isVisible('#diff-key'), false);
+  for (const id of ['#report', '#trace']) {
+    assert.ok(await page.getAttribute(id, 'data-stale'), `${id} is marked stale`);
+  }
+  const href = await page.getAttribute('#error-text a', 'href');
+  assert.equal(href, 'docs/scene-format.md');
+  const served = await page.evaluate(async (h) => (await fetch(h)).ok, href);
+  assert.ok(served, 'the linked doc is served with the page');
+  await page.evaluate(() => { document.body.dataset.state = 'edited'; });
+  await page.fill('#scene', good);
+  assert.equal(await settled(page), 'done');
+  for (const id of ['#report', '#trace']) {
+    assert.equal(await page.getAttribute(id, 'data-stale'), null, `${id} is current again`);
+  }
+  assert.equal(await page.isVisible('#diff'), true, 'the diff is back');
+  await page.click('#forget-student');
+  assert.equal(await page.isVisible('#diff'), false);
+  console.log('ok 3 - an error after a compare: the diff hidden, report and trace marked stale, the doc linked');
+}
+
 // 7. A student's own debug trace pasted beside a clicked pixel is read as
 // `trace --against` reads it: the planted mistake of examples/studio-410-175.dbg is the
 // first difference, the reference's own trace agrees, another pixel's is refused.
@@ -322,9 +399,6 @@ async function readsAStudentsTrace(page) {
   assert.equal(Math.round(box.width), 640, 'the canvas is shown at its size');
   const [x, y] = [410, 175];
   await page.evaluate(() => { document.body.dataset.state = 'edited'; });
-  // The browser gives a click whole CSS pixels: aim at the first whole coordinate inside
-  // the image's pixel (the canvas may start at a fractional one).
-  const inside = (start, offset) => Math.ceil(start + offset) - start + 0.05;
   await page.click('#image', { position: { x: inside(box.x, x), y: inside(box.y, 480 - 1 - y) } });
   assert.equal(await settled(page), 'done');
   assert.equal(await page.getAttribute('#trace-pane', 'data-pixel'), `${x},${y}`);
@@ -413,10 +487,64 @@ async function gradeReportLoads(browser, file) {
   console.log(`ok 8 - grade's report opens from disk: ${images.count} images load, no console error`);
 }
 
+// 9. At a laptop's 1366x900 and a phone's 390x844, with a compare report and a traced
+// pixel: no pane, trace or report wider than its box (nothing behind a sideways scroll),
+// every control labelled; on the phone the image comes first, above the fold, and a
+// tapped pixel's trace is scrolled into view.
+async function fitsALaptopAndAPhone(browser, url, shots) {
+  const name = 'quadrics_gallery.txt';
+  const text = readFileSync(join(top, 'examples', name));
+  const made = legacyRt(['320', '240', '--variant', 'no-shadows', '-o', 'layout.ppm'], { input: text, cwd: scratch });
+  assert.equal(made.status, 0, made.stderr);
+  for (const [width, height, shot] of [[1366, 900, shots.laptop], [390, 844, shots.phone]]) {
+    const page = await browser.newPage({ viewport: { width, height } });
+    await page.goto(url);
+    assert.equal(await settled(page), 'done');
+    if (width < 500) {
+      const [image, editor] = await page.evaluate(() => ['image-pane', 'editor-pane']
+        .map((id) => document.getElementById(id).getBoundingClientRect().top));
+      assert.ok(image < editor, `the image (top ${image}) comes before the editor (${editor})`);
+      const canvas = await page.locator('#image').boundingBox();
+      assert.ok(canvas.y + canvas.height / 2 < height, `the image starts above the fold (top ${canvas.y})`);
+    }
+    assert.equal(await openExample(page, name), 'done');
+    await page.evaluate(() => { document.body.dataset.state = 'edited'; });
+    await page.setInputFiles('#student', { name: 'layout.ppm', mimeType: 'image/x-portable-pixmap',
+      buffer: readFileSync(join(scratch, 'layout.ppm')) });
+    assert.equal(await settled(page), 'done');
+    await page.waitForFunction(() => window.legacyRt.state.comparison !== null);
+    if (shot) {
+      await page.evaluate(() => window.scrollTo(0, 0));
+      await page.screenshot({ path: shot });
+      console.log(`screenshot: ${shot}`);
+    }
+    const box = await page.locator('#image').boundingBox();
+    await page.evaluate(() => { document.body.dataset.state = 'edited'; window.scrollTo(0, 0); });
+    await page.locator('#image').scrollIntoViewIfNeeded();
+    await page.click('#image', { position: { x: box.width * 0.5, y: box.height * 0.6 } });
+    assert.equal(await settled(page), 'done');
+    const trace = await page.evaluate(() => document.getElementById('trace-pane').getBoundingClientRect().top);
+    assert.ok(trace >= -1 && trace < height - 40, `the trace is in view after the tap (top ${trace})`);
+    const overflow = await page.evaluate(() => ['editor-pane', 'image-pane', 'trace-pane', 'trace', 'report', 'trace-command']
+      .map((id) => document.getElementById(id))
+      .filter((e) => e.scrollWidth > e.clientWidth + 1)
+      .map((e) => `${e.id}: ${e.scrollWidth} > ${e.clientWidth}`));
+    assert.deepEqual(overflow, [], `nothing wider than its box at ${width}x${height}`);
+    const pageWidth = await page.evaluate(() => document.documentElement.scrollWidth);
+    assert.ok(pageWidth <= width, `the page is ${pageWidth} wide at ${width}`);
+    const unlabelled = await page.evaluate(() => [...document.querySelectorAll('input, select, textarea')]
+      .filter((e) => e.labels.length === 0 && !e.getAttribute('aria-label'))
+      .map((e) => e.id || e.name || e.type));
+    assert.deepEqual(unlabelled, [], 'every control has a label');
+    await page.close();
+    console.log(`ok 9 - at ${width}x${height}: nothing cut at the right, every control labelled${width < 500 ? ', the image first and the trace scrolled to' : ''}`);
+  }
+}
+
 // The page showing the gallery of quadrics with a traced pixel, for the docs: a fresh
 // page, so that nothing of the tests shows.
 async function takeScreenshot(browser, url, file) {
-  const page = await browser.newPage({ viewport: { width: 1280, height: 640 } });
+  const page = await browser.newPage({ viewport: { width: 1366, height: 900 } });
   await page.goto(url);
   assert.equal(await settled(page), 'done');
   assert.equal(await openExample(page, 'quadrics_gallery.txt'), 'done');
@@ -500,8 +628,11 @@ async function main() {
     await takesAddedTextures(page);
     await tracesAClickedPixel(page, 'spheres.txt');
     await namesTheMistake(page, 'spheres.txt', 'square-falloff');
+    await comparesAtTheStudentsSize(page);
+    await marksStaleResults(page);
     await readsAStudentsTrace(page);
     await gradeReportLoads(browser, gradeScreenshot);
+    await fitsALaptopAndAPhone(browser, url, { laptop: null, phone: phoneScreenshot });
     if (screenshot) await takeScreenshot(browser, url, screenshot);
     assert.deepEqual(problems, [], 'no uncaught error on the page');
   } finally {
