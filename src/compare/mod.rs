@@ -298,25 +298,31 @@ pub fn report(
     let levels = settings.tolerance.levels;
     let (width, height) = (reference.width, reference.height);
     let pixels = width * height;
-    let differences: Vec<u8> = (reference.pixels.iter().zip(&student.pixels))
-        .map(|(&a, &b)| pixel_difference(a, b))
-        .collect();
-    let beyond = |i: usize| differences[i] > levels;
     let excused = |i: usize| {
         let (a, b) = (reference.pixels[i], student.pixels[i]);
         rendered.fragility(i).excuses(a, b, levels)
     };
-    let differing_pixels = (0..pixels).filter(|&i| beyond(i)).count();
-    let differing_fragile_pixels = (0..pixels).filter(|&i| beyond(i) && excused(i)).count();
+    // One pass: each pixel's difference, the count beyond the tolerance and of those
+    // excused, and the sum of the channels' differences.
+    let mut differences = Vec::with_capacity(pixels);
+    let (mut differing_pixels, mut differing_fragile_pixels) = (0, 0);
+    let mut channel_sum = 0u64;
+    for (i, (&a, &b)) in reference.pixels.iter().zip(&student.pixels).enumerate() {
+        let difference = pixel_difference(a, b);
+        differences.push(difference);
+        channel_sum += (0..3).map(|c| u64::from(a[c].abs_diff(b[c]))).sum::<u64>();
+        if difference > levels {
+            differing_pixels += 1;
+            differing_fragile_pixels += usize::from(excused(i));
+        }
+    }
+    let beyond = |i: usize| differences[i] > levels;
     let fragile_pixels = rendered
         .marks
         .iter()
         .filter(|m| m.fragility().any())
         .count();
     let differing_fraction = differing_pixels as f64 / pixels.max(1) as f64;
-    let channel_sum: u64 = (reference.pixels.iter().zip(&student.pixels))
-        .flat_map(|(a, b)| (0..3).map(|c| u64::from(a[c].abs_diff(b[c]))))
-        .sum();
     // Only the pixels the reference is sure of count against the image.
     let counted = differing_pixels - differing_fragile_pixels;
     let verdict = match counted as f64 <= settings.tolerance.allow * pixels as f64 {
