@@ -5,7 +5,7 @@ of its processes) and its ratio to the first.
 
     bench/alternate.py --runs 5 NAME=COMMAND NAME=COMMAND ...
 """
-import resource, statistics, subprocess, sys
+import os, resource, statistics, subprocess, sys
 
 def cpu_seconds():
     usage = resource.getrusage(resource.RUSAGE_CHILDREN)
@@ -20,11 +20,14 @@ def main():
         sys.exit(__doc__)
     commands = [a.split("=", 1) for a in args]
     times = {name: [] for name, _ in commands}
+    # /dev/null opened for writing only: legacy-rt takes a read-write one (what
+    # subprocess.DEVNULL opens) for a closed standard output, and refuses it.
+    sink = open(os.devnull, "wb")
     for _ in range(runs):
         for name, command in commands:
             before = cpu_seconds()
             subprocess.run(command, shell=True, check=True,
-                           stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+                           stdout=sink, stderr=sink)
             times[name].append(cpu_seconds() - before)
     first = statistics.median(times[commands[0][0]])
     for name, _ in commands:

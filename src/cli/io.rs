@@ -46,7 +46,10 @@ pub fn check_stdout() -> Result<(), Failure> {
     match stdout_was_closed() {
         true => Err(Failure(
             "error: standard output is closed, so the output has nowhere to go: \
-             redirect it (> out.ppm) or give -o FILE"
+             redirect it (> out.ppm) or give -o FILE. (A /dev/null opened for reading and \
+             writing, as Python's subprocess.DEVNULL opens it, looks the same to a \
+             program: to discard the output, open /dev/null for writing only, as \
+             > /dev/null does, or in Python stdout=open(os.devnull, \"wb\").)"
                 .to_string(),
             2,
         )),

@@ -339,6 +339,16 @@ fn a_closed_standard_output_is_an_error_that_names_it() {
     let script = format!("exec '{binary}' 4 3 < '{scene}' > /dev/null");
     let output = Command::new("sh").args(["-c", &script]).output().unwrap();
     assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    // /dev/null opened for reading and writing (`<>`, Python's subprocess.DEVNULL) cannot
+    // be told from a closed output: the message says how to discard the output instead.
+    let script = format!("exec '{binary}' 4 3 < '{scene}' 1<> /dev/null");
+    let output = Command::new("sh").args(["-c", &script]).output().unwrap();
+    assert_eq!(output.status.code(), Some(2));
+    assert!(
+        stderr(&output).contains("open /dev/null for writing only"),
+        "{}",
+        stderr(&output)
+    );
 }
 
 #[test]
