@@ -168,6 +168,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     );
     println!("{memory}");
     writeln!(md, "{memory}")?;
+    let sizes = object_sizes();
+    println!("{sizes}");
+    writeln!(md, "{sizes}")?;
     writeln!(
         md,
         "\nChart: `performance.svg`, render time against object count, both axes \
@@ -177,6 +180,39 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     std::fs::write(root.join("docs/performance.md"), md)?;
     chart(&points, &root.join("docs/performance.svg"))?;
     Ok(())
+}
+
+/// The bytes each object of a loaded scene takes, by kind: an object is its shape (as
+/// large as the largest kind inline; the general `QUADRIC` and a rotation are boxed),
+/// its material and its pattern (a tiled plane's second material boxed).
+fn object_sizes() -> String {
+    use legacy_rt::scene::{Material, Object, Pattern};
+    use legacy_rt::shapes::*;
+    use std::mem::size_of;
+    let kinds = [
+        ("sphere (13, 19)", size_of::<Sphere>()),
+        ("plane (14, 20)", size_of::<Plane>()),
+        ("finite plane (15, 17)", size_of::<FinitePlane>()),
+        ("tiled plane (16)", size_of::<PlaneFrame>()),
+        ("paraboloid (21)", size_of::<Paraboloid>()),
+        ("cylinder (22)", size_of::<Cylinder>()),
+        ("cone (23)", size_of::<Cone>()),
+        ("hyperboloid (24)", size_of::<Hyperboloid>()),
+        ("QUADRIC (boxed)", size_of::<Quadric>()),
+    ];
+    let mut out = format!(
+        "\nMemory per object: {} bytes (the shape {}, the material {}, the pattern {}, \
+         the kind and the line). The shapes themselves:\n\n| kind | bytes |\n|---|---:|\n",
+        size_of::<Object>(),
+        size_of::<Shape>(),
+        size_of::<Material>(),
+        size_of::<Pattern>()
+    );
+    for (kind, bytes) in kinds {
+        out += &format!("| {kind} | {bytes} |\n");
+    }
+    out + "\nA rotated quadric 21-24 adds its rotation (144 bytes, boxed); an unrotated \
+           one, and every sphere, does not. `bench/load.sh` loads a million records."
 }
 
 /// Time against object count for the BVH and the linear scan.

@@ -68,7 +68,7 @@ pub(crate) fn material_and_pattern(
             let material = if foreground {
                 object.material
             } else {
-                *background
+                **background
             };
             let note = PatternNote::Tile {
                 relx,

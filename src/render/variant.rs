@@ -899,7 +899,7 @@ impl Rules {
                         if let Pattern::Tiles { background, .. } = &mut object.pattern {
                             // Even relx + rely now picks the first material: the same as
                             // swapping the two materials under the odd rule.
-                            std::mem::swap(&mut object.material, background);
+                            std::mem::swap(&mut object.material, &mut **background);
                         }
                     }
                     Kind::ConeScale => {

@@ -297,7 +297,10 @@ fn object(record: &Record, files: &dyn Files) -> Result<Object, Refusal> {
             positive(name, "tile width", tile.x).map_err(Refusal::of(TILE_SIZE, 0))?;
             positive(name, "tile height", tile.y).map_err(Refusal::of(TILE_SIZE, 1))?;
             let background = material(record, [BACK_AMBIENT, BACK_DIFFUSE, BACK_SPECULAR])?;
-            pattern = Pattern::Tiles { tile, background };
+            pattern = Pattern::Tiles {
+                tile,
+                background: Box::new(background),
+            };
             Shape::TiledPlane(frame)
         }
         21..=24 => {

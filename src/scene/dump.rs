@@ -59,8 +59,8 @@ impl Dump {
 
     fn axis(&mut self, origin: &str, frame: &AxisFrame) {
         self.vector(origin, frame.centre);
-        self.matrix("rotmat", frame.rotmat);
-        self.matrix("irot", frame.irot);
+        self.matrix("rotmat", frame.rotmat());
+        self.matrix("irot", frame.irot());
     }
 
     fn light(&mut self, light: &Light) {

@@ -146,8 +146,9 @@ pub enum Pattern {
     Tiles {
         /// Tile width and height, > 0.
         tile: DVec2,
-        /// The second material block.
-        background: Material,
+        /// The second material block; boxed, so that every other object does not carry
+        /// its 72 bytes (a pattern is as large as its largest kind).
+        background: Box<Material>,
     },
     /// 17: a texture multiplying ambient and diffuse (spec §5.8).
     Texture {

@@ -9,13 +9,19 @@ use glam::{DMat3, DVec3};
 pub struct AxisFrame {
     /// The point that becomes the local origin (base centre, vertex, apex or waist centre).
     pub centre: DVec3,
+    /// The rotation, `None` when it is the identity (every sphere, and a centre line
+    /// along +y): the hit test then skips the matrix products, and an unrotated frame
+    /// takes 32 bytes instead of 176 (a million spheres, 144 MB less).
+    pub rotation: Option<Box<Rotation>>,
+}
+
+/// A frame's rotation and its inverse.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Rotation {
     /// Rotation taking the unit centre line to +y.
     pub rotmat: DMat3,
     /// The inverse rotation, `rotmat` transposed.
     pub irot: DMat3,
-    /// Whether `rotmat` is the identity (a sphere, or a centre line along +y), so that
-    /// the hit test can skip the two matrix products.
-    pub identity: bool,
 }
 
 impl AxisFrame {
@@ -40,22 +46,31 @@ impl AxisFrame {
             [row0, c, row0.cross(c)]
         };
         let irot = DMat3::from_cols(rows[0], rows[1], rows[2]);
-        Ok(AxisFrame {
-            centre,
-            rotmat: irot.transpose(),
-            irot,
-            identity: irot == DMat3::IDENTITY,
-        })
+        let rotation = (irot != DMat3::IDENTITY).then(|| {
+            Box::new(Rotation {
+                rotmat: irot.transpose(),
+                irot,
+            })
+        });
+        Ok(AxisFrame { centre, rotation })
     }
 
     /// The frame of a sphere: its centre and no rotation.
     pub fn unrotated(centre: DVec3) -> AxisFrame {
         AxisFrame {
             centre,
-            rotmat: DMat3::IDENTITY,
-            irot: DMat3::IDENTITY,
-            identity: true,
+            rotation: None,
         }
+    }
+
+    /// Rotation taking the unit centre line to +y (the identity for an unrotated frame).
+    pub fn rotmat(&self) -> DMat3 {
+        self.rotation.as_ref().map_or(DMat3::IDENTITY, |r| r.rotmat)
+    }
+
+    /// The inverse rotation (the identity for an unrotated frame).
+    pub fn irot(&self) -> DMat3 {
+        self.rotation.as_ref().map_or(DMat3::IDENTITY, |r| r.irot)
     }
 
     /// The ray in the local frame: B' = rotmat (B - C), D' = rotmat D.
@@ -73,16 +88,18 @@ impl AxisFrame {
     /// rotmat v (v itself when the frame is unrotated).
     #[inline]
     pub fn rotate(&self, v: DVec3) -> DVec3 {
-        if self.identity { v } else { self.rotmat * v }
+        match &self.rotation {
+            None => v,
+            Some(rotation) => rotation.rotmat * v,
+        }
     }
 
     /// A local normal back in the world: unit(irot N'), or zero if N' is zero.
     #[inline]
     pub fn normal_to_world(&self, local_normal: DVec3) -> DVec3 {
-        let world = if self.identity {
-            local_normal
-        } else {
-            self.irot * local_normal
+        let world = match &self.rotation {
+            None => local_normal,
+            Some(rotation) => rotation.irot * local_normal,
         };
         unit(world).unwrap_or(DVec3::ZERO)
     }
@@ -106,9 +123,9 @@ mod tests {
             DVec3::new(-1e-200, 1.0, 0.0),
         ] {
             let frame = AxisFrame::new(DVec3::ZERO, line, "cylinder").unwrap();
-            assert_close(frame.rotmat * (line / line.length()), DVec3::Y);
-            assert!((frame.rotmat.determinant() - 1.0).abs() < 1e-15);
-            let product = frame.rotmat * frame.irot;
+            assert_close(frame.rotmat() * (line / line.length()), DVec3::Y);
+            assert!((frame.rotmat().determinant() - 1.0).abs() < 1e-15);
+            let product = frame.rotmat() * frame.irot();
             for (col, unit_col) in [product.x_axis, product.y_axis, product.z_axis]
                 .into_iter()
                 .zip([DVec3::X, DVec3::Y, DVec3::Z])
@@ -122,7 +139,7 @@ mod tests {
     fn note_003_rotates_the_orthogonal_vector_to_plus_x() {
         // Centre line +x: c × y = +z, so rotmat takes +z to +x.
         let frame = AxisFrame::new(DVec3::ZERO, DVec3::X, "cylinder").unwrap();
-        assert_close(frame.rotmat * DVec3::Z, DVec3::X);
+        assert_close(frame.rotmat() * DVec3::Z, DVec3::X);
     }
 
     #[test]

@@ -263,7 +263,7 @@ impl AxisQuadric {
         for corner in 0..8 {
             let pick = |bit: usize, a: f64, b: f64| if corner & bit == 0 { a } else { b };
             let local = DVec3::new(pick(1, -r, r), pick(2, low, high), pick(4, -r, r));
-            let world = self.frame.irot * local + self.frame.centre;
+            let world = self.frame.irot() * local + self.frame.centre;
             min = min.min(world);
             max = max.max(world);
         }

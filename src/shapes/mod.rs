@@ -262,6 +262,10 @@ pub struct Surface {
 
 /// Every shape of spec §3.2-§3.3 that can be hit.
 #[derive(Debug, Clone, PartialEq)]
+// A tag of its own: left to itself the compiler hides the kind in a spare value of a
+// field inside the shapes, and every hit test's dispatch pays to decode it (2.8 % more
+// instructions on spec1).
+#[repr(u8)]
 pub enum Shape {
     /// 13 and 19: a sphere.
     Sphere(Sphere),

@@ -205,3 +205,26 @@ fn the_room_under_every_variant_renders_as_the_linear_scan() {
             > 3000
     );
 }
+
+/// Memory per object (issue 30): a million records must fit a laptop's memory, so an
+/// object carries only what its kind needs inline. An unrotated frame (every sphere) has
+/// no matrices, a tiled plane's second material and the general quadric are boxed, and
+/// the shape's kind is a tag of its own. Measured 472 bytes before; the sizes per kind
+/// are in docs/performance.md.
+#[test]
+fn an_object_takes_at_most_280_bytes() {
+    use legacy_rt::scene::{Object, Pattern};
+    use legacy_rt::shapes::{AxisFrame, Shape, Sphere};
+    use std::mem::size_of;
+    assert!(size_of::<Object>() <= 280, "{}", size_of::<Object>());
+    assert!(size_of::<Shape>() <= 152, "{}", size_of::<Shape>());
+    assert!(size_of::<Pattern>() <= 32, "{}", size_of::<Pattern>());
+    assert!(size_of::<Sphere>() <= 136, "{}", size_of::<Sphere>());
+    // A sphere's frame is its centre: no rotation is stored for it.
+    let sphere = legacy_rt::load("8 6\n0 0 3\n13\n1 1 1\n0 0 0\n0 0 0\n0 0 -5\n1\n").unwrap();
+    let Shape::Sphere(s) = &sphere.objects[0].shape else {
+        panic!("a sphere")
+    };
+    assert_eq!(s.equation.frame, AxisFrame::unrotated(s.centre));
+    assert!(s.equation.frame.rotation.is_none());
+}

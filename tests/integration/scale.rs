@@ -42,7 +42,7 @@ fn scale_shape(shape: &Shape, s: f64) -> Shape {
             let f = &x.equation.frame;
             let shape = Paraboloid::new(
                 f.centre * s,
-                line(f.irot),
+                line(f.irot()),
                 x.size.radius * s,
                 x.size.height * s,
             );
@@ -52,7 +52,7 @@ fn scale_shape(shape: &Shape, s: f64) -> Shape {
             let f = &x.equation.frame;
             let shape = Cylinder::new(
                 f.centre * s,
-                line(f.irot),
+                line(f.irot()),
                 x.size.radius * s,
                 x.size.height * s,
             );
@@ -63,7 +63,7 @@ fn scale_shape(shape: &Shape, s: f64) -> Shape {
             Shape::Cone(
                 Cone::new(
                     f.centre * s,
-                    line(f.irot),
+                    line(f.irot()),
                     x.size.radius * s,
                     x.size.height * s,
                 )
@@ -73,7 +73,7 @@ fn scale_shape(shape: &Shape, s: f64) -> Shape {
         Shape::Hyperboloid(x) => {
             let f = &x.equation.frame;
             let (r, h, w) = (x.size.radius * s, x.size.height * s, x.waist * s);
-            Shape::Hyperboloid(Hyperboloid::new(f.centre * s, line(f.irot), r, h, w).unwrap())
+            Shape::Hyperboloid(Hyperboloid::new(f.centre * s, line(f.irot()), r, h, w).unwrap())
         }
         Shape::Quadric(x) => {
             // f(P / s) s²: the quadratic terms stay, the linear ones gain s, J gains s².
@@ -103,7 +103,7 @@ fn scaled(scene: &Scene, s: f64) -> Option<Scene> {
             let pattern = match &object.pattern {
                 Pattern::Plain => Pattern::Plain,
                 Pattern::Tiles { tile, background } => {
-                    let mut background = *background;
+                    let mut background = background.clone();
                     background.ambient *= s;
                     Pattern::Tiles {
                         tile: *tile * s,

@@ -639,9 +639,9 @@ fn local_point(
         world(offset.y, offset_error.y, dir.y),
         world(offset.z, offset_error.z, dir.z),
     ];
-    if frame.identity {
+    let Some(rotation) = &frame.rotation else {
         return world;
-    }
+    };
     // Row i of rotmat is column i of irot.
     let row = |axis: DVec3| {
         sum_as_dd([
@@ -650,7 +650,7 @@ fn local_point(
             scaled(axis.z, world[2]),
         ])
     };
-    let irot = &frame.irot;
+    let irot = &rotation.irot;
     let y = if exact_y {
         row(irot.y_axis)
     } else {

@@ -178,9 +178,9 @@ pub(crate) fn axis_quadric<R: Real>(
     let mut dir = R::vector(ray.dir);
     // "If the centerline already lies on the y-axis there is nothing more to do. If not",
     // rotate the center line onto +y: B' = rotmat B', D' = rotmat D.
-    if !frame.identity {
-        base = R::rotate(&frame.rotmat, base);
-        dir = R::rotate(&frame.rotmat, dir);
+    if let Some(rotation) = &frame.rotation {
+        base = R::rotate(&rotation.rotmat, base);
+        dir = R::rotate(&rotation.rotmat, dir);
     }
     // "a = dx² + dz², b = 2(bx dx + bz dz), c = bx² + bz² - r²" for the cylinder, and the
     // other rows of the table of `AxisQuadric`.

@@ -75,8 +75,8 @@ fn ray_past(centre: DVec3, dir: DVec3, sideways: DVec3, impact: f64, distance: f
 fn from_local(equation: &AxisQuadric, base: DVec3, dir: DVec3) -> Ray {
     let frame = &equation.frame;
     Ray {
-        base: frame.centre + frame.irot * base,
-        dir: unit(frame.irot * dir).expect("nonzero direction"),
+        base: frame.centre + frame.irot() * base,
+        dir: unit(frame.irot() * dir).expect("nonzero direction"),
     }
 }
 
@@ -159,9 +159,9 @@ fn sphere(centre: DVec3, radius: f64) -> Shape {
 pub fn as_general_quadric(equation: &AxisQuadric) -> Quadric {
     // f(P) = (P - C)ᵀ M (P - C) + β r·(P - C) + γ with M = Rᵀ diag(α) R and r the y row
     // of R (R = rotmat).
-    let r = equation.frame.rotmat;
+    let r = equation.frame.rotmat();
     let m = r.transpose() * glam::DMat3::from_diagonal(equation.alpha) * r;
-    let row_y = equation.frame.irot.col(1);
+    let row_y = equation.frame.irot().col(1);
     let c = equation.frame.centre;
     let beta = equation.linear_y;
     let g = -(m * c) + 0.5 * beta * row_y;

@@ -87,11 +87,11 @@ fn axis_reference(quadric: &AxisQuadric, ray: &Ray) -> Reference {
     let offset: [T; 3] = [0, 1, 2].map(|i| t(ray.base[i]) - t(frame.centre[i]));
     let dir: [T; 3] = [0, 1, 2].map(|i| t(ray.dir[i]));
     let rotate = |v: [T; 3]| -> [T; 3] {
-        if frame.identity {
+        let Some(rotation) = &frame.rotation else {
             return v;
-        }
+        };
         [0, 1, 2].map(|i| {
-            let row = frame.irot.col(i);
+            let row = rotation.irot.col(i);
             v[0] * row.x + v[1] * row.y + v[2] * row.z
         })
     };
