@@ -82,6 +82,7 @@ const state = {
   againstName: 'dbg.txt', // the student's trace file, as the report names it
   student: null, // the compared image: { name, bytes }
   comparison: null,
+  stale: false, // the scene no longer loads: what was computed from it is marked
   openedAt: null, // when the scene was opened, until its first picture is shown
   firstPicture: null, // how long that took, in ms
 };
@@ -263,10 +264,16 @@ function markStale(stale) {
     if (stale) $(id).dataset.stale = 'the scene no longer loads: this was computed from its last version';
     else delete $(id).dataset.stale;
   }
-  // The diff would be drawn at full strength over a greyed image: hidden until it loads.
-  if (stale) $('diff').hidden = true;
-  else $('diff').hidden = !($('show-diff').checked && state.comparison);
-  $('diff-key').hidden = $('diff').hidden;
+  state.stale = stale;
+  showDiff();
+}
+
+// The diff and its key are shown when there is a comparison, it is asked for, and the
+// scene still loads (over a greyed image it would be drawn at full strength).
+function showDiff() {
+  const shown = Boolean(state.comparison) && $('show-diff').checked && !state.stale;
+  $('diff').hidden = !shown;
+  $('diff-key').hidden = !shown;
 }
 
 // When the first picture of a scene just opened is on the canvas: how long it took.
@@ -478,7 +485,7 @@ async function compareStudent() {
         'the reference is compared at the size of the student\'s image.';
       $('size-note').hidden = false;
       state.comparison = null;
-      $('diff').hidden = true;
+      showDiff();
       await update();
       return;
     }
@@ -486,15 +493,13 @@ async function compareStudent() {
     $('report').textContent = result.text;
     $('report').dataset.verdict = result.matches ? 'match' : 'differ';
     draw($('diff'), result.diff, result.width, result.height);
-    $('diff').hidden = !$('show-diff').checked;
-    $('diff-key').hidden = $('diff').hidden;
+    showDiff();
   } catch (error) {
     if (error.cancelled) throw error;
     state.comparison = null;
     $('report').textContent = error.scene ? 'the scene has an error' : error.message;
     $('report').dataset.verdict = 'error';
-    $('diff').hidden = true;
-    $('diff-key').hidden = true;
+    showDiff();
   }
 }
 
@@ -515,10 +520,7 @@ $('student').addEventListener('change', (event) => {
   if (file) takeStudent(file);
   event.target.value = '';
 });
-$('show-diff').addEventListener('change', () => {
-  $('diff').hidden = !($('show-diff').checked && state.comparison);
-  $('diff-key').hidden = $('diff').hidden;
-});
+$('show-diff').addEventListener('change', showDiff);
 for (const id of ['tolerance', 'allow', 'diagnose']) {
   $(id).addEventListener('change', () => state.student && takeStudent(new File([state.student.bytes], state.student.name)));
 }
@@ -685,8 +687,7 @@ function forgetStudent() {
   state.student = null;
   state.comparison = null;
   $('report').hidden = true;
-  $('diff').hidden = true;
-  $('diff-key').hidden = true;
+  showDiff();
   $('size-note').hidden = true;
   $('forget-student').hidden = true;
 }

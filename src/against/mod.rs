@@ -130,6 +130,14 @@ impl Report {
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Unreadable(pub String);
 
+impl Unreadable {
+    /// The message for the student's file shown as `file`, as the command line and the
+    /// page give it (without the command line's `error: `).
+    pub fn about(&self, file: &str) -> String {
+        format!("cannot read {file} against the reference: {}", self.0)
+    }
+}
+
 /// Reads the student's `text` against `trace`, the reference's trace of the same pixel.
 pub fn against(scene: &Scene, trace: &Trace, text: &str) -> Result<Report, Unreadable> {
     let lines: Vec<&str> = text.lines().collect();

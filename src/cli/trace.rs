@@ -128,15 +128,8 @@ fn against(
     json: bool,
 ) -> Result<(String, bool), Failure> {
     let shown = legacy_rt::error::escaped(&path.display().to_string());
-    let report = legacy_rt::against::against(scene, trace, student).map_err(|unreadable| {
-        Failure(
-            format!(
-                "error: cannot read {shown} against the reference: {}",
-                unreadable.0
-            ),
-            2,
-        )
-    })?;
+    let report = legacy_rt::against::against(scene, trace, student)
+        .map_err(|unreadable| Failure(format!("error: {}", unreadable.about(&shown)), 2))?;
     let differs = report.first_difference().is_some();
     let text = match json {
         true => {

@@ -281,7 +281,13 @@ pub fn reference(scene: &Scene, options: &Options, student: &Image, precision: f
         height: student.height,
         ..*options
     };
-    let (image, marks) = render::render_with_margins(scene, &options, precision);
+    reference_at(scene, &options, precision)
+}
+
+/// The reference of `scene` under `options`, at their size, with how sure it is of each
+/// pixel at relative `precision`: what `grade` renders once for every student of a size.
+pub fn reference_at(scene: &Scene, options: &Options, precision: f64) -> Reference {
+    let (image, marks) = render::render_with_margins(scene, options, precision);
     Reference { image, marks }
 }
 

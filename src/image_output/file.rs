@@ -131,18 +131,35 @@ impl OutputFile {
                     }
                     Err(error) => return Err(io_error(error)),
                 };
-                let (file, partial) = partial;
-                temporary(Some(&partial));
-                let result =
-                    fill(file, bytes, existing.as_ref()).and_then(|()| fs::rename(&partial, path));
-                if result.is_err() {
-                    let _ = fs::remove_file(&partial);
-                }
+                temporary(Some(&partial.1));
+                let result = fill_and_rename(partial, path, bytes, existing.as_ref());
                 temporary(None);
                 result.map_err(io_error)
             }
         }
     }
+}
+
+/// Replaces (or creates) the file at `path` with `bytes`, whole or not at all: written
+/// to a new file beside it, then renamed over it. Whatever `path` was (a symbolic or hard
+/// link, a file of other permissions) is replaced, never written through: what `grade`
+/// needs for the files of its report folder.
+pub fn replace(path: &Path, bytes: &[u8]) -> io::Result<()> {
+    fill_and_rename(create_beside(path)?, path, bytes, None)
+}
+
+/// Fills the new file `partial` and renames it to `path`; removed if that fails.
+fn fill_and_rename(
+    (file, partial): (File, PathBuf),
+    path: &Path,
+    bytes: &[u8],
+    existing: Option<&Metadata>,
+) -> io::Result<()> {
+    let result = fill(file, bytes, existing).and_then(|()| fs::rename(&partial, path));
+    if result.is_err() {
+        let _ = fs::remove_file(&partial);
+    }
+    result
 }
 
 /// The number of hard links to a file (1 where the system does not say).

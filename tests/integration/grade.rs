@@ -82,6 +82,19 @@ fn class(name: &str) -> PathBuf {
     let p6 = fs::read(dir.join("subs/ada/studio.ppm")).unwrap();
     fs::create_dir_all(dir.join("subs/hal/spheres.ppm")).unwrap();
     fs::write(dir.join("subs/hal/studio.ppm"), &p6[..p6.len() / 2]).unwrap();
+    // ivy: a named pipe (no writer: reading it would wait for ever) and an image whose
+    // header claims 10^10 pixels.
+    fs::create_dir_all(dir.join("subs/ivy")).unwrap();
+    let fifo = std::ffi::CString::new(dir.join("subs/ivy/spheres.ppm").to_str().unwrap()).unwrap();
+    // SAFETY: mkfifo reads the NUL-terminated path and creates a FIFO; nothing else.
+    assert_eq!(unsafe { libc::mkfifo(fifo.as_ptr(), 0o644) }, 0);
+    fs::write(dir.join("subs/ivy/studio.ppm"), b"P6\n100000 100000\n255\n").unwrap();
+    // ada handed in a PNG of studio besides the PPM: the PPM is graded, the PNG listed.
+    fs::copy(
+        dir.join("subs/cy/studio.png"),
+        dir.join("subs/ada/studio.png"),
+    )
+    .unwrap();
     dir
 }
 
@@ -150,7 +163,7 @@ fn every_row_is_what_compare_says_of_its_pair() {
     );
     let grades = read_grades(&dir.join("report"));
     let rows = grades["rows"].as_array().unwrap();
-    assert_eq!(rows.len(), 8 * SCENES.len());
+    assert_eq!(rows.len(), 9 * SCENES.len());
     rows_are_compares(&dir, &grades, &[]);
     let verdict = |student: &str, scene: &str| {
         let row = rows
@@ -171,6 +184,12 @@ fn every_row_is_what_compare_says_of_its_pair() {
     assert_eq!(verdict("gus", "studio"), "unreadable");
     assert_eq!(verdict("hal", "spheres"), "unreadable", "a folder");
     assert_eq!(verdict("hal", "studio"), "unreadable", "truncated");
+    assert_eq!(verdict("ivy", "spheres"), "unreadable", "a named pipe");
+    assert_eq!(
+        verdict("ivy", "studio"),
+        "unreadable",
+        "too large by its header"
+    );
     let cy = rows
         .iter()
         .find(|r| r["student"] == "cy" && r["scene"] == "studio")
@@ -180,7 +199,13 @@ fn every_row_is_what_compare_says_of_its_pair() {
         "{}",
         cy["diagnosis"]
     );
-    assert_eq!(grades["unexpected"], serde_json::json!(["gus/notes.txt"]));
+    let unexpected = serde_json::json!(["ada/studio.png", "gus/notes.txt"]);
+    assert_eq!(grades["unexpected"], unexpected);
+    let ada = rows
+        .iter()
+        .find(|r| r["student"] == "ada" && r["scene"] == "studio")
+        .unwrap();
+    assert_eq!(ada["file"], "subs/ada/studio.ppm");
 
     // The CSV says what the JSON says.
     let mut csv = csv::Reader::from_path(dir.join("report/grades.csv")).unwrap();
@@ -335,7 +360,7 @@ fn shards_merged_equal_the_whole_class() {
                 .len(),
         );
     }
-    assert_eq!(sizes.iter().sum::<usize>(), 8 * SCENES.len(), "{sizes:?}");
+    assert_eq!(sizes.iter().sum::<usize>(), 9 * SCENES.len(), "{sizes:?}");
     assert!(sizes.iter().all(|&n| n > 0), "{sizes:?}");
     let merged = run_in(
         &dir,
@@ -438,6 +463,41 @@ fn grade_refuses_what_it_cannot_read_or_would_overwrite() {
     let occupied = run_in(&dir, &["grade", "scenes", "subs", "-o", "mine"]);
     assert_eq!(occupied.status.code(), Some(2));
     assert_eq!(fs::read_dir(dir.join("mine")).unwrap().count(), 1);
+    // An earlier report whose page was made a hard link to a student's image, and whose
+    // CSV a symbolic link to it: grading again replaces the links, not the image.
+    let first = run_in(&dir, &["grade", "scenes", "subs", "-o", "again"]);
+    assert!(
+        first.status.success(),
+        "{}",
+        String::from_utf8_lossy(&first.stderr)
+    );
+    let image = dir.join("subs/ada/spheres.ppm");
+    let before = fs::read(&image).unwrap();
+    fs::remove_file(dir.join("again/index.html")).unwrap();
+    fs::hard_link(&image, dir.join("again/index.html")).unwrap();
+    fs::remove_file(dir.join("again/grades.csv")).unwrap();
+    std::os::unix::fs::symlink(&image, dir.join("again/grades.csv")).unwrap();
+    let second = run_in(&dir, &["grade", "scenes", "subs", "-o", "again"]);
+    assert!(
+        second.status.success(),
+        "{}",
+        String::from_utf8_lossy(&second.stderr)
+    );
+    assert_eq!(
+        fs::read(&image).unwrap(),
+        before,
+        "the student's image is untouched"
+    );
+    assert!(
+        fs::read_to_string(dir.join("again/index.html"))
+            .unwrap()
+            .starts_with("<!doctype html>")
+    );
+    assert!(
+        !fs::symlink_metadata(dir.join("again/grades.csv"))
+            .unwrap()
+            .is_symlink()
+    );
     // A scene that does not load is named.
     fs::write(dir.join("scenes/broken.txt"), b"this is not a scene\n").unwrap();
     let broken = run_in(&dir, &["grade", "scenes", "subs", "-o", "report"]);

@@ -165,29 +165,33 @@ fn student(
     prefix: &str,
     unexpected: &mut Vec<String>,
 ) -> Student {
-    let mut chosen: Vec<Option<(usize, &PathBuf)>> = vec![None; scenes.len()];
+    // Per scene, the file kept so far: the rank of its extension in IMAGES, its name, path.
+    let mut chosen: Vec<Option<(usize, &str, &PathBuf)>> = vec![None; scenes.len()];
     for (file, path) in files {
         let matched = split(file).and_then(|(stem, extension)| {
             let rank = IMAGES.iter().position(|e| *e == extension)?;
             Some((scenes.iter().position(|s| s.name == stem)?, rank))
         });
-        match matched {
-            Some((scene, rank)) => match chosen[scene] {
-                Some((other, _)) if other <= rank => unexpected.push(format!("{prefix}{file}")),
-                Some((_, replaced)) => {
-                    let replaced = replaced.file_name().unwrap_or_default().to_string_lossy();
-                    unexpected.push(format!("{prefix}{replaced}"));
-                    chosen[scene] = Some((rank, path));
+        let Some((scene, rank)) = matched else {
+            unexpected.push(format!("{prefix}{file}"));
+            continue;
+        };
+        match chosen[scene] {
+            Some((kept_rank, _, _)) if kept_rank <= rank => {
+                unexpected.push(format!("{prefix}{file}"));
+            }
+            kept => {
+                if let Some((_, kept_name, _)) = kept {
+                    unexpected.push(format!("{prefix}{kept_name}"));
                 }
-                None => chosen[scene] = Some((rank, path)),
-            },
-            None => unexpected.push(format!("{prefix}{file}")),
+                chosen[scene] = Some((rank, file, path));
+            }
         }
     }
     let files = chosen
         .into_iter()
         .map(|c| match c {
-            Some((_, path)) => Submitted::File(path.clone()),
+            Some((_, _, path)) => Submitted::File(path.clone()),
             None => Submitted::Missing,
         })
         .collect();

@@ -24,11 +24,6 @@ fn esc(text: &str) -> String {
     out
 }
 
-/// Points without a needless `.0`.
-fn points(p: f64) -> String {
-    p.to_string()
-}
-
 const STYLE: &str = "
 body { font: 14px/1.4 system-ui, sans-serif; margin: 16px; color: #222; }
 table.grades { border-collapse: collapse; margin: 8px 0 16px; }
@@ -93,13 +88,7 @@ pub fn page(grades: &Grades) -> String {
 
 /// The number of pairs of each verdict, and the points given.
 fn verdict_counts(out: &mut String, grades: &Grades) {
-    let mut counts: Vec<(&str, usize)> = Vec::new();
-    for row in &grades.rows {
-        match counts.iter_mut().find(|(v, _)| *v == row.verdict) {
-            Some((_, n)) => *n += 1,
-            None => counts.push((&row.verdict, 1)),
-        }
-    }
+    let counts = grades.verdicts();
     let given: f64 = grades.rows.iter().map(|r| r.points).sum();
     let possible: f64 = grades.rows.iter().map(|r| r.max_points).sum();
     let counts: Vec<String> = counts
@@ -111,8 +100,8 @@ fn verdict_counts(out: &mut String, grades: &Grades) {
         "<p>{} pairs: {}; {} of {} points given.</p>",
         grades.rows.len(),
         counts.join(", "),
-        points(given),
-        points(possible)
+        given,
+        possible
     );
 }
 
@@ -138,8 +127,8 @@ fn table(out: &mut String, grades: &Grades) {
                         out,
                         "<td class=\"{0}\"><a href=\"#pair-{i}\">{0}</a><br><small>{1}/{2}</small></td>",
                         esc(&row.verdict),
-                        points(row.points),
-                        points(row.max_points)
+                        row.points,
+                        row.max_points
                     );
                 }
                 None => out.push_str("<td></td>"),
@@ -147,12 +136,7 @@ fn table(out: &mut String, grades: &Grades) {
         }
         let given: f64 = rows.iter().map(|(_, r)| r.points).sum();
         let possible: f64 = rows.iter().map(|(_, r)| r.max_points).sum();
-        let _ = writeln!(
-            out,
-            "<td>{} / {}</td></tr>",
-            points(given),
-            points(possible)
-        );
+        let _ = writeln!(out, "<td>{} / {}</td></tr>", given, possible);
     }
     let _ = write!(out, "</tbody>\n<tfoot><tr><th>matches</th>");
     for scene in &grades.scenes {
@@ -182,8 +166,8 @@ fn pair(out: &mut String, i: usize, row: &Row) {
         esc(&row.verdict),
         esc(&differing),
         esc(&size),
-        points(row.points),
-        points(row.max_points)
+        row.points,
+        row.max_points
     );
     if let Some(file) = &row.file {
         let _ = writeln!(out, "<p><code>{}</code></p>", esc(file));

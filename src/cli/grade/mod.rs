@@ -190,6 +190,20 @@ pub struct Grades {
     pub rows: Vec<Row>,
 }
 
+impl Grades {
+    /// Each verdict given and how many pairs got it, in the order first given.
+    pub fn verdicts(&self) -> Vec<(&str, usize)> {
+        let mut counts: Vec<(&str, usize)> = Vec::new();
+        for row in &self.rows {
+            match counts.iter_mut().find(|(v, _)| *v == row.verdict) {
+                Some((_, n)) => *n += 1,
+                None => counts.push((&row.verdict, 1)),
+            }
+        }
+        counts
+    }
+}
+
 /// Grades the class, or joins parts with `--merge`.
 pub fn run(args: &GradeArgs) -> Result<(), Failure> {
     args.how.check()?;
@@ -457,8 +471,7 @@ impl Grader<'_> {
                 ..options
             };
             let precision = self.args.close.tolerance(None).precision;
-            let (image, marks) = legacy_rt::render::render_with_margins(scene, &options, precision);
-            let reference = Reference { image, marks };
+            let reference = compare::reference_at(scene, &options, precision);
             if let Err(error) = self
                 .folder
                 .reference_image(&self.class.scenes[index].name, &reference.image)
@@ -473,14 +486,9 @@ impl Grader<'_> {
 
 /// The verdicts' counts on standard error, and where the report is.
 fn summary(grades: &Grades, folder: &Path) {
-    let mut counts: Vec<(String, usize)> = Vec::new();
-    for row in &grades.rows {
-        match counts.iter_mut().find(|(v, _)| *v == row.verdict) {
-            Some((_, n)) => *n += 1,
-            None => counts.push((row.verdict.clone(), 1)),
-        }
-    }
-    let counts: Vec<String> = counts.iter().map(|(v, n)| format!("{n} {v}")).collect();
+    let counts: Vec<String> = (grades.verdicts().iter())
+        .map(|(v, n)| format!("{n} {v}"))
+        .collect();
     super::say(&format!(
         "graded {} pairs ({} students x {} scenes{}): {}; report in {}",
         grades.rows.len(),

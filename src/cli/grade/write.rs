@@ -1,5 +1,5 @@
-//! The report folder and its files: each written whole (to a hidden file beside it, then
-//! renamed over), so that an interrupted run leaves no half file and a symbolic link
+//! The report folder and its files: each written whole (to a new hidden file beside it,
+//! then renamed over), so that a failure leaves no half file and a symbolic or hard link
 //! planted in the folder is replaced, not written through.
 
 use super::super::Failure;
@@ -12,7 +12,6 @@ use std::collections::HashSet;
 use std::fs;
 use std::path::{Component, Path, PathBuf};
 use std::sync::Mutex;
-use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// The largest side of the report's small images; larger images are scaled down.
 const THUMBNAIL: (u32, u32) = (240, 180);
@@ -35,20 +34,9 @@ fn cannot_write(path: &Path, error: impl std::fmt::Display) -> Failure {
     )
 }
 
-/// A number for each temporary file of this process.
-static PARTIAL: AtomicUsize = AtomicUsize::new(0);
-
-/// Writes `bytes` to `path` whole: to a hidden file in its folder, then renamed over it.
+/// Writes `bytes` to `path` whole ([`image_output::file::replace`]).
 fn put(path: &Path, bytes: &[u8]) -> Result<(), Failure> {
-    let name = path.file_name().unwrap_or_default().to_string_lossy();
-    let n = PARTIAL.fetch_add(1, Ordering::Relaxed);
-    let partial = path.with_file_name(format!(".{name}.partial-{}-{n}", std::process::id()));
-    let result = fs::write(&partial, bytes).and_then(|()| fs::rename(&partial, path));
-    if let Err(error) = result {
-        let _ = fs::remove_file(&partial);
-        return Err(cannot_write(path, error));
-    }
-    Ok(())
+    image_output::file::replace(path, bytes).map_err(|error| cannot_write(path, error))
 }
 
 /// `path` made absolute and resolved as far as it exists.

@@ -307,12 +307,8 @@ impl Session {
         let trace = self.pixel(&options, x, row)?;
         let scene = self.scene()?;
         let shown = legacy_rt::error::escaped(file_name);
-        let report = legacy_rt::against::against(scene, &trace, student).map_err(|unreadable| {
-            thrown(format!(
-                "cannot read {shown} against the reference: {}",
-                unreadable.0
-            ))
-        })?;
+        let report = legacy_rt::against::against(scene, &trace, student)
+            .map_err(|unreadable| thrown(unreadable.about(&shown)))?;
         let mut json = serde_json::to_value(report.summary(&trace, file_name))
             .map_err(|error| thrown(error.to_string()))?;
         json["text"] = report.text(scene, &trace, &shown, student).into();
