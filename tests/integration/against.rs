@@ -742,4 +742,32 @@ fn another_pixel_or_another_scene_is_exit_2() {
         &std::fs::read(&path).unwrap(),
     );
     assert_eq!(output.status.code(), Some(2));
+    // A named pipe with no writer is refused at once, not waited on; binary garbage is
+    // no trace.
+    let dir = crate::common::folder("against-untrusted");
+    let fifo = dir.join("dbg.txt");
+    let name = std::ffi::CString::new(fifo.to_str().unwrap()).unwrap();
+    // SAFETY: mkfifo reads the NUL-terminated path and creates a FIFO; nothing else.
+    assert_eq!(unsafe { libc::mkfifo(name.as_ptr(), 0o644) }, 0);
+    let scene = std::fs::read(&path).unwrap();
+    let output = run(
+        &["trace", "300", "200", "--against", fifo.to_str().unwrap()],
+        &scene,
+    );
+    assert_eq!(output.status.code(), Some(2));
+    let garbage: Vec<u8> = (0..=255u8).cycle().take(1 << 16).collect();
+    std::fs::write(dir.join("garbage.txt"), garbage).unwrap();
+    let garbage = dir.join("garbage.txt");
+    let output = run(
+        &[
+            "trace",
+            "300",
+            "200",
+            "--against",
+            garbage.to_str().unwrap(),
+        ],
+        &scene,
+    );
+    assert_eq!(output.status.code(), Some(2));
+    std::fs::remove_dir_all(&dir).unwrap();
 }
