@@ -2,13 +2,13 @@
 """Times `legacy-rt grade` on a class made by bench/class.py against the shell loop it
 replaces, `legacy-rt compare --diagnose` over the same pairs, one pair at a time. Prints
 the CPU time (user + system of the processes) and the wall time of each, and their ratio.
-The loop is run over the first --loop-students students only (it is the slow one) and its
-CPU time scaled to the class; grade is run over the whole class and over those students
-alone, so that the ratio on the same pairs is measured, not extrapolated.
+The loop is run over the first --loop-students students only (it is the slow one), and
+grade over those students alone, so that the ratio is measured on the same pairs, not
+extrapolated; grade is then timed over the whole class.
 
     bench/grade.py --class /tmp/class [--threads 2] [--loop-students 20]
 """
-import argparse, os, resource, shutil, subprocess, tempfile, time
+import argparse, os, resource, subprocess, tempfile, time
 
 
 def cpu_seconds():

@@ -361,3 +361,41 @@ fn the_help_lists_every_variant() {
         assert!(help.contains(&id), "--help does not list {id}");
     }
 }
+
+#[test]
+fn the_readme_s_grading_example_is_what_the_program_prints() {
+    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
+    let start = readme.find("### Grading a class").unwrap();
+    let section = &readme[start..];
+    let section = &section[..section.find("\n### ").unwrap()];
+    let blocks = fenced_blocks(section, "sh");
+    assert_eq!(blocks.len(), 2, "{blocks:?}");
+    // The README's words for what it prints, one line however the paragraph wraps.
+    let said = section.split("It prints the counts (`").nth(1).unwrap();
+    let said = said[..said.find("`)").unwrap()].replace('\n', " ");
+    // Run as a reader runs it: from a folder with the repository's examples/, with the
+    // installed legacy-rt on the PATH.
+    let folder = super::common::folder("readme-grade");
+    std::os::unix::fs::symlink(root().join("examples"), folder.join("examples")).unwrap();
+    let binary = std::path::Path::new(env!("CARGO_BIN_EXE_legacy-rt"));
+    let path = format!(
+        "{}:{}",
+        binary.parent().unwrap().display(),
+        std::env::var("PATH").unwrap_or_default()
+    );
+    let output = std::process::Command::new("sh")
+        .args(["-e", "-c", &blocks[1]])
+        .current_dir(&folder)
+        .env("PATH", path)
+        .output()
+        .unwrap();
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let printed = String::from_utf8(output.stderr).unwrap();
+    assert_eq!(printed.trim_end(), said);
+    assert!(folder.join("try/report/index.html").is_file());
+    std::fs::remove_dir_all(&folder).unwrap();
+}
