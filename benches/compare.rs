@@ -102,7 +102,7 @@ fn diagnose(runs: usize, root: &Path) {
                 std::hint::black_box(render(&scene, &options, |_| {}));
             };
             let diagnosed = || {
-                let reference = compare::reference(&scene, &options, &student, compare::F32);
+                let reference = compare::reference(&scene, &options, &student, compare::F32, true);
                 let with_scene = Some((&scene, &options));
                 let report = compare::report(&reference, &student, with_scene, &settings);
                 std::hint::black_box(report.expect("one size"));

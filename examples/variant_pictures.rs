@@ -123,7 +123,7 @@ fn main() {
             .expect("applies")
     };
     let student = render(&scene, &student_options, |_| {});
-    let reference = compare::reference(&scene, &options, &student, compare::F32);
+    let reference = compare::reference(&scene, &options, &student, compare::F32, false);
     save(
         &diff_image(&reference, &student, 0).expect("one size"),
         "docs/compare-fragile.png",

@@ -45,7 +45,7 @@ fuzz_target!(|data: &[u8]| {
     if (2..=48).contains(&student.width) && (2..=48).contains(&student.height) {
         let scene = legacy_rt::load(SCENE).unwrap();
         let options = Options::new(student.width, student.height);
-        let rendered = compare::reference(&scene, &options, &student, compare::F32);
+        let rendered = compare::reference(&scene, &options, &student, compare::F32, false);
         assert!(rendered.image == render(&scene, &options, |_| {}));
         let report = compare::report(&rendered, &student, Some((&scene, &options)), &settings);
         let _ = compare::text::text(&report.unwrap(), "scene.txt", "student", None);

@@ -237,7 +237,8 @@ fn run_inner(args: &CompareArgs) -> Result<bool, Failure> {
                 ..args.how.options(&scene, w, h)?
             };
             let precision = settings.tolerance.precision;
-            let reference = compare::reference(&scene, &options, &student, precision);
+            let reference =
+                compare::reference(&scene, &options, &student, precision, args.diagnose);
             (reference, Some(scene), Some(options))
         }
         false => {

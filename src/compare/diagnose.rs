@@ -7,14 +7,22 @@
 //! wrong. Each candidate is first tried on a sample, the differing pixels and as many
 //! agreeing ones, rendered by the renderer's own code ([`render::render_pixels`]), which
 //! estimates its agreement with the student's image (the share of pixels within the
-//! tolerance); only the best few are rendered whole, and what is reported is their exact
+//! tolerance); only the best is scored exactly, and what is reported is its exact
 //! agreement. The best is tried together with each other candidate the same way.
+//!
+//! A candidate's bytes come from the renderer's code only where it can change them: the
+//! reference keeps each pixel's paths ([`render::Paths`]: the objects hit, the shadows'
+//! blockers, the lights, the bytes under the other byte rules), and a variant of one
+//! record re-traces only the pixels whose paths name it ([`render::Reach`]); the others
+//! keep the reference's bytes. Its exact agreement then costs the pixels it touches, not
+//! a whole render (which the variants of the camera, the divisor or the geometry still
+//! take).
 //! MAX_DIST is not guessed from a list: one render with long paths records each pixel's
 //! bytes after each mirror bounce ([`render::path_agreement`]), which gives the image
 //! under every MAX_DIST at once, and the best D is read off ([`estimate_max_dist`]).
 
-use super::{agreement, pixel_difference};
-use crate::render::{self, Image, Kind, Options, VARIANTS, Variant, variant::Scope};
+use super::{Reference, pixel_difference};
+use crate::render::{self, Image, Kind, Options, Reach, VARIANTS, Variant, variant::Scope};
 use crate::scene::Scene;
 use serde::Serialize;
 
@@ -23,7 +31,7 @@ pub const PROBE_LIMIT: f64 = 1000.0;
 
 /// How many differing pixels, and as many agreeing ones, a candidate is tried on: every
 /// candidate on the small sample first, the best [`SHORTLIST`] on the large one.
-const SAMPLE: [usize; 2] = [256, 1024];
+const SAMPLE: [usize; 2] = [128, 512];
 
 /// How many candidates go on from the small sample to the large one.
 const SHORTLIST: usize = 8;
@@ -97,7 +105,7 @@ struct Tried {
 pub fn diagnose(
     scene: &Scene,
     options: &Options,
-    reference: &Image,
+    reference: &Reference,
     student: &Image,
     levels: u8,
 ) -> Vec<Diagnosis> {
@@ -109,10 +117,11 @@ pub fn diagnose(
 pub fn diagnose_and_focus(
     scene: &Scene,
     options: &Options,
-    reference: &Image,
+    rendered: &Reference,
     student: &Image,
     levels: u8,
 ) -> (Vec<Diagnosis>, Option<Focus>) {
+    let reference = &rendered.image;
     // Which pixels differ, a bit each (not a list of them all): one pass over the images.
     let pixels = reference.pixels.len();
     let mut mask = vec![0u64; pixels.div_ceil(64)];
@@ -142,6 +151,33 @@ pub fn diagnose_and_focus(
         (sample, split)
     });
     let total = reference.pixels.len() as f64;
+    // What a candidate can change, where the reference knows its pixels' paths: only
+    // those pixels are traced again, the others keep the reference's bytes (under its
+    // byte rule). `None`: any pixel.
+    let paths = &rendered.paths;
+    let given: Vec<Variant> = options.variants.iter().collect();
+    let reach = |variants: &[Variant]| match paths.len() == pixels {
+        true => Reach::of(scene, &given, variants),
+        false => None,
+    };
+    // The candidate's bytes at the pixels `at`.
+    let bytes_at = |options: &Options, variants: &[Variant], at: &[usize]| -> Vec<[u8; 3]> {
+        let Some(reach) = reach(variants) else {
+            return render::render_pixels(scene, options, at);
+        };
+        let traced: Vec<usize> = at
+            .iter()
+            .copied()
+            .filter(|&i| reach.touches(paths[i]))
+            .collect();
+        let mut bytes = render::render_pixels(scene, options, &traced).into_iter();
+        (at.iter())
+            .map(|&i| match reach.touches(paths[i]) {
+                true => bytes.next().unwrap_or_default(),
+                false => reach.untouched(paths[i], reference.pixels[i]),
+            })
+            .collect()
+    };
     // The agreement a candidate would have, from its bytes on sample `k`; and a pixel it
     // explains.
     let estimate_on = |k: usize, variants: &[Variant]| -> Option<(f64, Option<usize>)> {
@@ -150,7 +186,7 @@ pub fn diagnose_and_focus(
             .try_fold(*options, |o, &v| o.with_variant(v).ok())?;
         let (sample, split) = &samples[k];
         let (sample_d, sample_a) = sample.split_at(*split);
-        let bytes = render::render_pixels(scene, &options, sample);
+        let bytes = bytes_at(&options, variants, sample);
         let fixed: Vec<usize> = (sample_d.iter().zip(&bytes))
             .filter(|&(&i, &b)| agrees(i, b))
             .map(|(&i, _)| i)
@@ -163,15 +199,33 @@ pub fn diagnose_and_focus(
             + agreeing as f64 * share(kept, sample_a.len());
         Some((after / total, fixed.first().copied()))
     };
+    // The exact agreement: every pixel the candidate can change traced again (the whole
+    // image when that may be any).
     let exact = |variants: &[Variant]| -> Option<f64> {
         let options = variants
             .iter()
             .try_fold(*options, |o, &v| o.with_variant(v).ok())?;
-        Some(agreement(
-            &render::render(scene, &options, |_| {}),
-            student,
-            levels,
-        ))
+        let agreeing = match reach(variants) {
+            None => {
+                let image = render::render(scene, &options, |_| {});
+                (image.pixels.iter().enumerate())
+                    .filter(|&(i, &b)| agrees(i, b))
+                    .count()
+            }
+            Some(reach) => {
+                let traced: Vec<usize> = (0..pixels).filter(|&i| reach.touches(paths[i])).collect();
+                let bytes = render::render_pixels(scene, &options, &traced);
+                let fixed = (traced.iter().zip(bytes))
+                    .filter(|&(&i, b)| agrees(i, b))
+                    .count();
+                let others = (0..pixels)
+                    .filter(|&i| !reach.touches(paths[i]))
+                    .filter(|&i| agrees(i, reach.untouched(paths[i], reference.pixels[i])))
+                    .count();
+                fixed + others
+            }
+        };
+        Some(agreeing as f64 / total.max(1.0))
     };
     // Tried on the small sample, then the best few on the large one.
     let estimate = |variants: &[Variant]| estimate_on(1, variants);

@@ -67,6 +67,9 @@ pub struct Reference {
     /// Per pixel, what a correct tracer may get otherwise and the object the camera ray
     /// hits first; empty for an image given as the reference (then no pixel is excused).
     pub marks: Vec<render::Mark>,
+    /// Per pixel, what its path involves (rendered for `--diagnose`, else empty): the
+    /// diagnosis re-traces only the pixels a candidate can change ([`render::Reach`]).
+    pub paths: Vec<render::Paths>,
 }
 
 impl Reference {
@@ -75,6 +78,7 @@ impl Reference {
         Reference {
             image,
             marks: Vec::new(),
+            paths: Vec::new(),
         }
     }
 
@@ -274,21 +278,45 @@ pub fn wrong_size(student: &Image, expected: (usize, usize), settings: &Settings
 }
 
 /// The reference of `scene` under `options`, at the student image's size, with how sure
-/// it is of each pixel at relative `precision` ([`Tolerance::precision`]).
-pub fn reference(scene: &Scene, options: &Options, student: &Image, precision: f64) -> Reference {
+/// it is of each pixel at relative `precision` ([`Tolerance::precision`]), and with what
+/// each pixel's path involves when it is to `diagnose`.
+pub fn reference(
+    scene: &Scene,
+    options: &Options,
+    student: &Image,
+    precision: f64,
+    diagnose: bool,
+) -> Reference {
     let options = Options {
         width: student.width,
         height: student.height,
         ..*options
     };
-    reference_at(scene, &options, precision)
+    reference_at(scene, &options, precision, diagnose)
 }
 
 /// The reference of `scene` under `options`, at their size, with how sure it is of each
-/// pixel at relative `precision`: what `grade` renders once for every student of a size.
-pub fn reference_at(scene: &Scene, options: &Options, precision: f64) -> Reference {
-    let (image, marks) = render::render_with_margins(scene, options, precision);
-    Reference { image, marks }
+/// pixel at relative `precision`, and with what each pixel's path involves when it is to
+/// `diagnose`: what `grade` renders once for every student of a size.
+pub fn reference_at(scene: &Scene, options: &Options, precision: f64, diagnose: bool) -> Reference {
+    match diagnose {
+        true => {
+            let (image, marks, paths) = render::render_with_paths(scene, options, precision);
+            Reference {
+                image,
+                marks,
+                paths,
+            }
+        }
+        false => {
+            let (image, marks) = render::render_with_margins(scene, options, precision);
+            Reference {
+                image,
+                marks,
+                paths: Vec::new(),
+            }
+        }
+    }
 }
 
 /// Compares `student` with `reference`; with the scene (and the options the reference
@@ -381,7 +409,7 @@ pub fn report(
                 height,
                 ..*options
             };
-            let (found, focus) = diagnose_and_focus(scene, &options, reference, student, levels);
+            let (found, focus) = diagnose_and_focus(scene, &options, rendered, student, levels);
             (Some(found), focus)
         }
         _ => (None, None),

@@ -35,6 +35,7 @@
 //! that what lies that close behind the answer, measured on a point of size up to 64
 //! times its distance, is heard (at most [`MARGIN_REACH`]).
 
+use super::reach::Paths;
 use super::record::{Event, LightStep, MARGIN_REACH, Recorder};
 use super::shading::{PatternNote, Screen};
 use crate::scene::{Pattern, Scene, Shader, TextureMode};
@@ -109,8 +110,9 @@ impl Facts {
     }
 }
 
-/// One pixel's margins, as the tracer tells its steps.
-pub(crate) struct Margins<'s, 'a> {
+/// One pixel's margins, as the tracer tells its steps; and with `PATHS` what its path
+/// involves, for `compare --diagnose`.
+pub(crate) struct Margins<'s, 'a, const PATHS: bool> {
     sizes: &'s Sizes<'a>,
     /// The smallest margin of a decision that chose what the pixel shows.
     pub(crate) least: f64,
@@ -138,10 +140,12 @@ pub(crate) struct Margins<'s, 'a> {
     surest_blocker: f64,
     /// The nearest unblocking decision's margin (shadow rays).
     nearest_miss: f64,
+    /// What the path involves, for `compare --diagnose` (src/render/reach.rs).
+    pub(crate) paths: Paths,
 }
 
-impl<'s, 'a> Margins<'s, 'a> {
-    pub(crate) fn new(sizes: &'s Sizes<'a>) -> Margins<'s, 'a> {
+impl<'s, 'a, const PATHS: bool> Margins<'s, 'a, PATHS> {
+    pub(crate) fn new(sizes: &'s Sizes<'a>) -> Margins<'s, 'a, PATHS> {
         Margins {
             sizes,
             least: f64::INFINITY,
@@ -156,6 +160,7 @@ impl<'s, 'a> Margins<'s, 'a> {
             nearest: [None; 2],
             surest_blocker: 0.0,
             nearest_miss: f64::INFINITY,
+            paths: Paths::default(),
         }
     }
 
@@ -356,7 +361,7 @@ impl<'s, 'a> Margins<'s, 'a> {
     }
 }
 
-impl Recorder for Margins<'_, '_> {
+impl<const PATHS: bool> Recorder for Margins<'_, '_, PATHS> {
     const ON: bool = true;
     const EVERY_OBJECT: bool = false;
     const NOTES: bool = true;
@@ -376,7 +381,12 @@ impl Recorder for Margins<'_, '_> {
                 let max = self.sizes.max_dist;
                 self.take((total_dist - max).abs() / max);
             }
-            Event::Closest { hit } => self.closest(hit),
+            Event::Closest { hit } => {
+                if PATHS && let Some((object, _)) = hit {
+                    self.paths.hit(object);
+                }
+                self.closest(hit);
+            }
             Event::Surface {
                 object,
                 t,
@@ -390,6 +400,11 @@ impl Recorder for Margins<'_, '_> {
                 }
             }
             Event::Lamp { light } => self.light = light,
+            Event::Lit {
+                light,
+                contribution,
+                ..
+            } if PATHS && contribution != DVec3::ZERO => self.paths.lit(light),
             Event::Light(LightStep::Towards { dist, .. }) => self.light_dist = dist,
             Event::Light(LightStep::Spot { along, .. }) => {
                 let light = &self.sizes.scene.lights[self.light];
@@ -404,6 +419,9 @@ impl Recorder for Margins<'_, '_> {
                 self.start(&ray, Some(self.light_dist));
             }
             Event::Light(LightStep::Blocked { blocker }) => {
+                if PATHS && let Some((object, _)) = blocker {
+                    self.paths.blocked(object, self.light);
+                }
                 let margin = match blocker {
                     Some(_) => self.surest_blocker,
                     None => self.nearest_miss,
@@ -454,7 +472,7 @@ mod tests {
         );
         let ray = setup.camera.ray(1, 1).expect("a ray");
         assert_eq!((ray.base, ray.dir), (DVec3::new(0.0, 0.0, 3.0), -DVec3::Z));
-        let mut rec = Margins::new(&sizes);
+        let mut rec = Margins::<false>::new(&sizes);
         tracer.pixel::<Accurate>(ray, tracer.objects.tile(1, 1), &mut rec);
         rec.least
     }

@@ -13,6 +13,7 @@ mod choices;
 mod lists;
 mod margins;
 mod objects;
+mod reach;
 mod record;
 mod shading;
 mod stage;
@@ -22,6 +23,7 @@ mod tracer;
 pub mod variant;
 
 pub use choices::{Choices, by_name, size_problem};
+pub use reach::{Paths, Reach};
 pub use record::{Event, LightStep, Skip, Stats};
 pub use shading::PatternNote;
 pub use stage::{Show, Stage};
@@ -39,6 +41,7 @@ use glam::DVec3;
 use objects::From;
 use record::Recorder;
 use std::borrow::Cow;
+use tiles::Tile;
 use tracer::Tracer;
 use variant::{AsWritten, Rulebook, Rules};
 
@@ -456,41 +459,72 @@ impl Mark {
 /// in one render with a recorder of margins (src/render/margins.rs). The image is the
 /// plain render's, byte for byte.
 pub fn render_with_margins(scene: &Scene, options: &Options, precision: f64) -> (Image, Vec<Mark>) {
+    let marks = marked::<false, _>(scene, options, precision, |mark, _| mark);
+    (image_of(options, &marks), marks)
+}
+
+/// [`render_with_margins`], and each pixel's [`Paths`]: what `compare --diagnose` needs
+/// to re-trace only the pixels a variant can change ([`Reach`]).
+pub fn render_with_paths(
+    scene: &Scene,
+    options: &Options,
+    precision: f64,
+) -> (Image, Vec<Mark>, Vec<Paths>) {
+    let both = marked::<true, _>(scene, options, precision, |mark, paths| (mark, paths));
+    let (marks, paths): (Vec<Mark>, Vec<Paths>) = both.into_iter().unzip();
+    (image_of(options, &marks), marks, paths)
+}
+
+/// The image whose pixels `marks` hold.
+fn image_of(options: &Options, marks: &[Mark]) -> Image {
+    Image {
+        width: options.width,
+        height: options.height,
+        pixels: marks.iter().map(|m| m.bytes()).collect(),
+    }
+}
+
+/// `keep(mark, paths)` of every pixel, in output order, from one render with a recorder
+/// of margins at `precision`; the paths are recorded if `PATHS` (else empty).
+fn marked<const PATHS: bool, T: Send + Clone + Default>(
+    scene: &Scene,
+    options: &Options,
+    precision: f64,
+    keep: impl Fn(Mark, Paths) -> T + Sync,
+) -> Vec<T> {
     let setup = Setup::new(scene, options);
     // As in `render`: the rules as written are constants to the tracer.
-    let pixels = match setup.rules.as_written() {
-        true => margins_of(
+    match setup.rules.as_written() {
+        true => margins_of::<PATHS, _, _>(
             &setup,
             setup.tracer_with(AsWritten, options),
             options,
             precision,
+            keep,
         ),
-        false => margins_of(&setup, setup.tracer(options), options, precision),
-    };
-    let image = Image {
-        width: options.width,
-        height: options.height,
-        pixels: pixels.iter().map(|m| m.bytes()).collect(),
-    };
-    (image, pixels)
+        false => margins_of::<PATHS, _, _>(&setup, setup.tracer(options), options, precision, keep),
+    }
 }
 
-/// Every pixel's bytes and mark at `precision`, in output order.
-fn margins_of<B: Rulebook>(
+/// Every pixel's `keep(mark, paths)` at `precision`, in output order, the paths
+/// recorded if `PATHS`.
+fn margins_of<const PATHS: bool, B: Rulebook, T: Send + Clone + Default>(
     setup: &Setup,
     tracer: Tracer<B>,
     options: &Options,
     precision: f64,
-) -> Vec<Mark> {
+    keep: impl Fn(Mark, Paths) -> T + Sync,
+) -> Vec<T> {
     let sizes = margins::Sizes::new(&setup.scene, options.max_dist, tracer.screen(), precision);
     let background = setup.rules.bytes(DVec3::ZERO);
     with_kernel!(options.kernel, K => {
-        let per_pixel = |x: usize, y: usize| -> Mark {
+        let per_pixel = |x: usize, y: usize| -> T {
             let tile = tracer.objects.tile(x, y);
             if tile.is_some_and(|tile| tile.objects.is_empty()) {
-                return Mark::new(background, Fragility::default(), FirstHit::default());
+                let mark = Mark::new(background, Fragility::default(), FirstHit::default());
+                return keep(mark, Paths::default());
             }
-            let mut rec = margins::Margins::new(&sizes);
+            let mut rec = margins::Margins::<PATHS>::new(&sizes);
             let colour = match setup.camera.ray(x, y) {
                 Some(ray) => tracer.pixel::<K>(ray, tile, &mut rec),
                 None => DVec3::ZERO,
@@ -502,7 +536,11 @@ fn margins_of<B: Rulebook>(
             let bytes = colour.to_array().map(|c| setup.rules.bytes.margin(c) / error);
             let fragility = Fragility::of(rec.least, bytes, precision);
             let first = FirstHit::of(rec.first.flatten());
-            Mark::new(setup.rules.bytes(colour), fragility, first)
+            let bytes = setup.rules.bytes(colour);
+            if PATHS {
+                rec.paths.colour(colour, bytes);
+            }
+            keep(Mark::new(bytes, fragility, first), rec.paths)
         };
         each_pixel(setup, options, per_pixel, &mut |_| {})
     })
@@ -510,34 +548,48 @@ fn margins_of<B: Rulebook>(
 
 /// The bytes of the pixels `indices` (output order: row 0 at the top) of the scene's
 /// image under `options`, without the rest: the same bytes as [`render`] gives there. For
-/// `compare --diagnose`, which tries a variant on a sample of pixels before it renders a
-/// whole image. The camera rays go without the tiles (which pay off only over a whole
-/// image); the hierarchy is kept.
+/// `compare --diagnose`, which tries a variant on a sample of pixels, and re-traces the
+/// pixels a variant can change, rather than render whole images. The camera rays go
+/// through the tiles when the pixels are a large share of the image (the tiles pay off
+/// only over many pixels); the hierarchy is kept.
 pub fn render_pixels(scene: &Scene, options: &Options, indices: &[usize]) -> Vec<[u8; 3]> {
-    at_pixels(scene, options, indices, |setup, tracer, ray| {
-        let colour = match ray {
-            Some(ray) => with_kernel!(options.kernel, K => tracer.pixel::<K>(ray, None, &mut ())),
-            None => DVec3::ZERO,
-        };
-        setup.rules.bytes(colour)
-    })
+    let tiled = 4 * indices.len() >= options.width * options.height;
+    at_pixels(
+        scene,
+        options,
+        indices,
+        tiled,
+        |setup, tracer, ray, tile| {
+            let background = tile.is_some_and(|tile| tile.objects.is_empty());
+            let colour = match ray {
+                Some(ray) if !background => {
+                    with_kernel!(options.kernel, K => tracer.pixel::<K>(ray, tile, &mut ()))
+                }
+                _ => DVec3::ZERO,
+            };
+            setup.rules.bytes(colour)
+        },
+    )
 }
 
-/// `per_pixel(setup, tracer, camera ray)` for each of the pixels `indices` (output
-/// order), with a tracer without tiles.
+/// `per_pixel(setup, tracer, camera ray, tile)` for each of the pixels `indices` (output
+/// order), with a tracer with tiles if `tiled`.
 fn at_pixels<T>(
     scene: &Scene,
     options: &Options,
     indices: &[usize],
-    per_pixel: impl Fn(&Setup, &Tracer<&Rules>, Option<Ray>) -> T,
+    tiled: bool,
+    per_pixel: impl Fn(&Setup, &Tracer<&Rules>, Option<Ray>, Option<Tile>) -> T,
 ) -> Vec<T> {
     let setup = Setup::new(scene, options);
-    let tracer = Tracer::new(&setup.scene, &setup.rules, options, None);
+    let camera = tiled.then_some(&setup.camera);
+    let tracer = Tracer::new(&setup.scene, &setup.rules, options, camera);
     let width = options.width.max(1);
     (indices.iter())
         .map(|&i| {
             let (x, y) = (i % width, setup.row_of(i / width, options.height));
-            per_pixel(&setup, &tracer, setup.camera.ray(x, y))
+            let tile = tracer.objects.tile(x, y);
+            per_pixel(&setup, &tracer, setup.camera.ray(x, y), tile)
         })
         .collect()
 }
@@ -592,7 +644,7 @@ impl Recorder for Involved {
 
 /// What the paths of the pixels `indices` (output order) involve, under `options`.
 pub fn involved(scene: &Scene, options: &Options, indices: &[usize]) -> Vec<Involved> {
-    at_pixels(scene, options, indices, |_, tracer, ray| {
+    at_pixels(scene, options, indices, false, |_, tracer, ray, _| {
         let mut path = Involved::default();
         if let Some(ray) = ray {
             with_kernel!(options.kernel, K => tracer.pixel::<K>(ray, None, &mut path));

@@ -71,8 +71,11 @@ impl<'a, B: Rulebook> Objects<'a, B> {
         let accelerate = options.accelerate;
         let rays = options.width * options.height;
         let bvh = accelerate.then(|| Bvh::for_rays(&boxes, rays)).flatten();
-        let tiles = (camera.filter(|_| accelerate))
-            .and_then(|camera| Tiles::new(scene, &boxes, camera.viewpoint, &camera.xs, &camera.ys));
+        let hidden = |index: usize| rules.some_hidden() && rules.object(index).hidden();
+        let tiles = (camera.filter(|_| accelerate)).and_then(|camera| {
+            let pixels = (&camera.xs[..], &camera.ys[..]);
+            Tiles::new(scene, &boxes, camera.viewpoint, pixels, hidden)
+        });
         Objects {
             scene,
             boxes,

@@ -94,13 +94,14 @@ impl Tiles {
     /// (`xs[x]`, `ys[y]`, 0); `None` when no tile would keep a list (more unbounded
     /// objects than [`MOST_OBJECTS`]), when there are more objects than pixels (the
     /// lists would cost more than they save: a 2x2 image of a million spheres), or when
-    /// the view is too wide or the pixel coordinates are not in order.
+    /// the view is too wide or the pixel coordinates are not in order. The objects
+    /// `hidden` (the variant hidden: camera rays pass through them) hide nothing.
     pub(crate) fn new(
         scene: &Scene,
         boxes: &Boxes,
         eye: DVec3,
-        xs: &[f64],
-        ys: &[f64],
+        (xs, ys): (&[f64], &[f64]),
+        hidden: impl Fn(usize) -> bool,
     ) -> Option<Tiles> {
         if scene.objects.len() > xs.len() * ys.len() {
             return None;
@@ -142,10 +143,12 @@ impl Tiles {
         let tiles = (0..down).flat_map(|ty| (0..across).map(move |tx| (tx, ty)));
         let corners: Vec<[DVec2; 4]> = tiles.map(|(tx, ty)| corners(xs, ys, tx, ty)).collect();
         // Per tile, the planes whose hits count at every pixel there (bit k: the k-th
-        // plane): whatever lies behind one of them cannot be the closest hit there.
+        // plane): whatever lies behind one of them cannot be the closest hit there. A
+        // hidden plane is passed through.
         let occluders: Vec<u32> = (corners.iter())
             .map(|corners| {
                 (seen.iter().enumerate())
+                    .filter(|&(k, _)| !hidden(plane_objects[k]))
                     .filter(|(_, plane)| plane.counts_throughout(corners))
                     .fold(0, |mask, (k, _)| mask | 1 << k)
             })
@@ -502,8 +505,9 @@ mod tests {
                 // Each kernel with the boxes the renderer gives it.
                 let boxes = Boxes::for_kernel(&scene, KernelChoice::Accurate);
                 let f32_boxes = Boxes::for_kernel(&scene, KernelChoice::TextbookF32);
+                let pixels = (&camera.xs[..], &camera.ys[..]);
                 let tiles_of =
-                    |boxes| Tiles::new(&scene, boxes, camera.viewpoint, &camera.xs, &camera.ys);
+                    |boxes| Tiles::new(&scene, boxes, camera.viewpoint, pixels, |_| false);
                 let (Some(tiles), Some(f32_tiles)) = (tiles_of(&boxes), tiles_of(&f32_boxes))
                 else {
                     continue;

@@ -637,7 +637,8 @@ impl Bytes {
         match self {
             Bytes::Truncate => to_byte(channel),
             _ if channel.is_nan() => 0,
-            Bytes::Round => (channel.clamp(0.0, 1.0) * 255.0 + 0.5).floor() as u8,
+            // A cast truncates, which for these non-negative values is the floor.
+            Bytes::Round => (channel.clamp(0.0, 1.0) * 255.0 + 0.5) as u8,
             Bytes::Scale256 => (channel.clamp(0.0, 1.0) * 256.0).min(255.0) as u8,
         }
     }

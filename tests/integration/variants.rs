@@ -25,6 +25,26 @@ fn red(image: &legacy_rt::Image, x: usize, y: usize) -> u8 {
     image.pixels[(image.height - 1 - y) * image.width + x][0]
 }
 
+/// examples/quadrics_gallery.txt, loaded.
+fn gallery() -> legacy_rt::Scene {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/examples/quadrics_gallery.txt"
+    ))
+    .unwrap();
+    legacy_rt::load(&text).unwrap()
+}
+
+/// The examples' scenes and the course's.
+fn every_scene() -> Vec<std::path::PathBuf> {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut files = crate::common::scene_files(&root.join("examples"));
+    if let Some(course) = crate::common::course_scenes() {
+        files.extend(crate::common::scene_files(&course));
+    }
+    files
+}
+
 /// The distance from the eye (0, 0, 3) to the plane z = -5 through world point (x, y, 0).
 fn to_the_wall(x: f64, y: f64) -> f64 {
     DVec3::new(x, y, -3.0).length() * 8.0 / 3.0
@@ -196,12 +216,7 @@ fn nearer_root_misses_the_inside_of_an_open_cylinder() {
 
 #[test]
 fn a_traced_pixel_has_the_bytes_of_the_variants_image() {
-    let text = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/examples/quadrics_gallery.txt"
-    ))
-    .unwrap();
-    let scene = legacy_rt::load(&text).unwrap();
+    let scene = gallery();
     for variant in Variant::all() {
         let options = Options::new(32, 24).with_variant(variant).unwrap();
         let image = render::render(&scene, &options, |_| {});
@@ -222,5 +237,146 @@ fn a_traced_pixel_has_the_bytes_of_the_variants_image() {
                     )
             );
         }
+    }
+}
+
+/// hidden@LINE on a plane: camera rays pass through it to what lies behind, as the
+/// course's loop (the trace tests every object in file order) finds it. The tiles once
+/// took a hidden plane for a wall that hides everything behind it and left those objects
+/// out of their lists: the back wall of a04 hidden showed the wall's own colour.
+#[test]
+fn a_hidden_plane_hides_nothing_behind_it() {
+    let files = every_scene();
+    let mut planes = 0;
+    for path in files {
+        let scene = legacy_rt::load(&std::fs::read_to_string(&path).unwrap()).unwrap();
+        let lines = (scene.objects.iter())
+            .filter(|o| matches!(o.shape, Shape::Plane(_) | Shape::TiledPlane(_)))
+            .map(|o| o.line);
+        for line in lines {
+            planes += 1;
+            let hidden = Variant::parse(&format!("hidden@{line}")).unwrap();
+            let options = Options::new(48, 36).with_variant(hidden).unwrap();
+            let image = render::render(&scene, &options, |_| {});
+            for (x, y) in (0..36)
+                .step_by(3)
+                .flat_map(|y| (0..48).step_by(3).map(move |x| (x, y)))
+            {
+                let trace = render::trace(&scene, &options, x, y).unwrap();
+                assert_eq!(
+                    trace.bytes,
+                    image.pixels[options.row_of(y) * 48 + x],
+                    "{} hidden@{line} at ({x}, {y})",
+                    path.display()
+                );
+            }
+        }
+    }
+    assert!(planes > 10, "{planes} planes");
+}
+
+/// What `compare --diagnose` relies on to score a candidate without a whole render
+/// (src/render/reach.rs): a variant of one record changes only the pixels whose paths in
+/// the reference name that record, and a byte rule only by the steps the paths hold. For
+/// every localisable edit of the first objects and of every light of each scene (and with
+/// round-bytes or scale-256 besides), the image put together from the reference (the
+/// pixels not touched) and from [`render::render_pixels`] (the touched ones) is the
+/// image rendered whole under the variants.
+#[test]
+fn a_variant_of_one_record_changes_only_the_pixels_whose_paths_name_it() {
+    use legacy_rt::render::{Reach, render_with_paths};
+    let files = every_scene();
+    let object_edits = [
+        "hidden",
+        "no-shadow",
+        "unlit",
+        "no-mirror",
+        "flipped-normal",
+        "facing-normals",
+        "shadow-epsilon",
+    ];
+    let light_edits = ["no-light", "unshadowed", "square-falloff"];
+    let (mut checked, mut touched_somewhere, mut untouched_somewhere) = (0, 0, 0);
+    for path in files {
+        let scene = legacy_rt::load(&std::fs::read_to_string(&path).unwrap()).unwrap();
+        let options = Options::new(40, 30);
+        let (reference, _, paths) = render_with_paths(&scene, &options, legacy_rt::compare::F32);
+        let mut sets: Vec<Vec<Variant>> = Vec::new();
+        for object in scene.objects.iter().take(5) {
+            for edit in object_edits {
+                sets.push(vec![
+                    Variant::parse(&format!("{edit}@{}", object.line)).unwrap(),
+                ]);
+            }
+            if matches!(object.shape, Shape::TiledPlane(_)) {
+                sets.push(vec![
+                    Variant::parse(&format!("tile-parity@{}", object.line)).unwrap(),
+                ]);
+            }
+        }
+        for light in &scene.lights {
+            for edit in light_edits {
+                sets.push(vec![
+                    Variant::parse(&format!("{edit}@{}", light.line)).unwrap(),
+                ]);
+            }
+        }
+        let bytes = [
+            Variant::parse("round-bytes").unwrap(),
+            Variant::parse("scale-256").unwrap(),
+        ];
+        if let Some(first) = sets.first().cloned() {
+            sets.push(vec![bytes[0], first[0]]);
+            sets.push(vec![first[0], bytes[1]]);
+        }
+        sets.extend(bytes.map(|b| vec![b]));
+        for variants in sets {
+            let ids: Vec<String> = variants.iter().map(|v| v.id()).collect();
+            let what = format!("{} --variant {}", path.display(), ids.join(","));
+            let edited = variants
+                .iter()
+                .fold(options, |o, &v| o.with_variant(v).unwrap());
+            let whole = render::render(&scene, &edited, |_| {});
+            let reach = Reach::of(&scene, &[], &variants).unwrap_or_else(|| panic!("{what}"));
+            let traced: Vec<usize> = (0..paths.len())
+                .filter(|&i| reach.touches(paths[i]))
+                .collect();
+            let mut bytes = render::render_pixels(&scene, &edited, &traced).into_iter();
+            for (i, &path) in paths.iter().enumerate() {
+                let pixel = match reach.touches(path) {
+                    true => bytes.next().unwrap(),
+                    false => reach.untouched(path, reference.pixels[i]),
+                };
+                assert_eq!(pixel, whole.pixels[i], "{what}: pixel {i}");
+            }
+            checked += 1;
+            touched_somewhere += usize::from(!traced.is_empty());
+            untouched_somewhere += usize::from(traced.len() < paths.len());
+        }
+    }
+    // Not vacuous: the edits touch some pixels and leave others to the reference.
+    assert!(checked > 200, "{checked}");
+    assert!(touched_somewhere > checked / 2 && untouched_somewhere > checked / 2);
+}
+
+/// The edits whose record may be hit where it was not (geometry) can change any pixel:
+/// no reach is claimed for them.
+#[test]
+fn geometry_variants_claim_no_reach() {
+    let scene = gallery();
+    for object in &scene.objects {
+        for edit in ["nearer-root", "cone-scale", "no-z-rule"] {
+            if let Ok(variant) = Variant::parse(&format!("{edit}@{}", object.line)) {
+                assert_eq!(render::Reach::of(&scene, &[], &[variant]), None);
+            }
+        }
+    }
+    for variant in Variant::all().filter(|v| v.row().site != render::variant::Site::Bytes) {
+        assert_eq!(
+            render::Reach::of(&scene, &[], &[variant]),
+            None,
+            "{}",
+            variant.id()
+        );
     }
 }

@@ -471,7 +471,7 @@ impl Grader<'_> {
                 ..options
             };
             let precision = self.args.close.tolerance(None).precision;
-            let reference = compare::reference_at(scene, &options, precision);
+            let reference = compare::reference_at(scene, &options, precision, true);
             if let Err(error) = self
                 .folder
                 .reference_image(&self.class.scenes[index].name, &reference.image)

@@ -338,7 +338,7 @@ impl Session {
         let (width, height) = (student.width as u32, student.height as u32);
         let (options, chosen) = self.options(width, height, choices_json)?;
         let precision = Tolerance::default().precision;
-        let reference = compare::reference(scene, &options, &student, precision);
+        let reference = compare::reference(scene, &options, &student, precision, diagnose);
         let settings = Settings {
             tolerance: Tolerance {
                 levels,

@@ -1,0 +1,220 @@
+//! Which pixels a variant can change: what `compare --diagnose` needs to know a
+//! candidate's exact agreement without rendering a whole image.
+//!
+//! A variant changes the image only where its rule is consulted with another outcome,
+//! and the trace under the reference's rules and under the variant's is the same up to
+//! that point: so the point lies on the reference's own path. While the reference
+//! renders, each pixel keeps a summary of its path ([`Paths`]): the objects its camera
+//! and mirror rays hit, those that block its shadow rays, the lights that add to it or
+//! are blocked, and the bytes its colour gives under the other byte rules. A variant of
+//! one record ([`Reach::of`]) can change only the pixels whose summary names that record
+//! (hidden, unlit, no-mirror, flipped-normal, facing-normals, tile-parity and
+//! shadow-epsilon act at hits on the object; no-shadow where it was the shadow ray's
+//! first blocker, since any other blocker still blocks; no-light, unshadowed and
+//! square-falloff where the light added something or was blocked); a byte rule changes a
+//! pixel's bytes by at most one level per channel, which the summary holds. The other
+//! variants (the camera's, the divisor, geometry that may be hit where it was not) can
+//! change any pixel.
+
+#[cfg(doc)]
+use super::variant::Bytes;
+use super::variant::{Kind, Site, Variant};
+use crate::scene::Scene;
+use glam::DVec3;
+
+/// One pixel's path in the reference, in 8 bytes: per object hit, per shadow blocker and
+/// per light a bit of its index modulo the field's width (indices that share a bit all
+/// count as named: a pixel is never missed, at worst one more is re-traced), and the
+/// steps its bytes take under round-bytes and scale-256.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Paths(u64);
+
+/// A field of [`Paths`]: its first bit and its width.
+#[derive(Clone, Copy)]
+struct Field(u32, u32);
+
+const HITS: Field = Field(0, 32);
+const BLOCKERS: Field = Field(32, 12);
+const LIGHTS: Field = Field(44, 12);
+/// Three bits per rule: whether each channel's byte is one level above the reference's.
+const ROUND: u32 = 56;
+const SCALE_256: u32 = 59;
+
+impl Field {
+    /// The bit of `index`.
+    fn bit(self, index: usize) -> u64 {
+        1 << (self.0 + (index % self.1 as usize) as u32)
+    }
+}
+
+impl Paths {
+    /// A camera or mirror ray hit `object`.
+    pub(crate) fn hit(&mut self, object: usize) {
+        self.0 |= HITS.bit(object);
+    }
+
+    /// `object` blocked a shadow ray toward `light`.
+    pub(crate) fn blocked(&mut self, object: usize, light: usize) {
+        self.0 |= BLOCKERS.bit(object) | LIGHTS.bit(light);
+    }
+
+    /// `light` added something.
+    pub(crate) fn lit(&mut self, light: usize) {
+        self.0 |= LIGHTS.bit(light);
+    }
+
+    /// The colour's bytes are `bytes` under the reference's rule (spec §4.7's truncation):
+    /// the steps under the other rules. [`Bytes::byte`]'s byte exceeds `bytes` exactly
+    /// where its value before the cast reaches the next integer (a NaN channel clamps to
+    /// 0 here, and gives 0 there).
+    pub(crate) fn colour(&mut self, colour: DVec3, bytes: [u8; 3]) {
+        let c = colour.max(DVec3::ZERO).min(DVec3::ONE);
+        let next = DVec3::from_array(bytes.map(f64::from)) + 1.0;
+        let round = (c * 255.0 + 0.5).cmpge(next).bitmask();
+        let scaled = (c * 256.0).min(DVec3::splat(255.0)).cmpge(next).bitmask();
+        self.0 |= u64::from(round) << ROUND | u64::from(scaled) << SCALE_256;
+    }
+
+    /// The bytes of this pixel under the byte rule `rule` (round-bytes or scale-256),
+    /// from the reference's `bytes`; the reference's for any other.
+    pub fn bytes(self, rule: Option<Kind>, bytes: [u8; 3]) -> [u8; 3] {
+        let first = match rule {
+            Some(Kind::RoundBytes) => ROUND,
+            Some(Kind::Scale256) => SCALE_256,
+            _ => return bytes,
+        };
+        let mut out = bytes;
+        for (c, byte) in out.iter_mut().enumerate() {
+            *byte += (self.0 >> (first + c as u32) & 1) as u8;
+        }
+        out
+    }
+}
+
+/// The pixels a set of variants can change, as far as [`Paths`] tells.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Reach {
+    /// The bits of the records they act on: a pixel whose paths share one may change.
+    records: u64,
+    /// The byte rule among them, whose bytes the paths hold.
+    bytes: Option<Kind>,
+}
+
+impl Reach {
+    /// What `variants`, applied on top of a reference rendered with `reference` (the
+    /// variants already in its options), can change; `None` when it may be any pixel.
+    pub fn of(scene: &Scene, reference: &[Variant], variants: &[Variant]) -> Option<Reach> {
+        // The steps held are from truncated bytes.
+        if reference.iter().any(|v| v.row().site == Site::Bytes) {
+            return None;
+        }
+        let mut reach = Reach {
+            records: 0,
+            bytes: None,
+        };
+        for variant in variants {
+            if variant.row().site == Site::Bytes && reach.bytes.is_none() {
+                reach.bytes = Some(variant.kind);
+                continue;
+            }
+            let line = variant.line?;
+            let object = scene.objects.iter().position(|o| o.line == line);
+            let light = scene.lights.iter().position(|l| l.line == line);
+            reach.records |= match (variant.kind, object, light) {
+                (
+                    Kind::Hidden
+                    | Kind::Unlit
+                    | Kind::NoMirror
+                    | Kind::FlippedNormal
+                    | Kind::FacingNormals
+                    | Kind::TileParity
+                    | Kind::ShadowEpsilon,
+                    Some(object),
+                    _,
+                ) => HITS.bit(object),
+                (Kind::NoShadow, Some(object), _) => BLOCKERS.bit(object),
+                (Kind::NoLight | Kind::Unshadowed | Kind::SquareFalloff, _, Some(light)) => {
+                    LIGHTS.bit(light)
+                }
+                // Geometry (no-z-rule, cone-scale, nearer-root) may be hit where it was
+                // not.
+                _ => return None,
+            };
+        }
+        Some(reach)
+    }
+
+    /// Whether a pixel whose path is `paths` may change: it must be traced again.
+    pub fn touches(self, paths: Paths) -> bool {
+        paths.0 & self.records != 0
+    }
+
+    /// The bytes of a pixel it does not touch, from the reference's `bytes`.
+    pub fn untouched(self, paths: Paths, bytes: [u8; 3]) -> [u8; 3] {
+        paths.bytes(self.bytes, bytes)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_steps_of_the_other_byte_rules() {
+        // 0.5: 127.5 truncates to 127, rounds to 128; 256 · 0.5 = 128.
+        // 0.1: 25.5 → 25, 26; 25.6 → 25.
+        // 1.0: 255 under every rule.
+        let mut paths = Paths::default();
+        let colour = DVec3::new(0.5, 0.1, 1.0);
+        let bytes = [127, 25, 255];
+        paths.colour(colour, bytes);
+        assert_eq!(paths.bytes(Some(Kind::RoundBytes), bytes), [128, 26, 255]);
+        assert_eq!(paths.bytes(Some(Kind::Scale256), bytes), [128, 25, 255]);
+        assert_eq!(paths.bytes(None, bytes), bytes);
+    }
+
+    #[test]
+    fn the_steps_agree_with_the_byte_rules_everywhere() {
+        use super::super::variant::Bytes;
+        // Every byte's edges and middles, and what lies outside [0, 1].
+        let mut channels: Vec<f64> = (0..=256)
+            .flat_map(|k| {
+                let edge = f64::from(k) / 255.0;
+                [
+                    edge,
+                    edge.next_down(),
+                    edge.next_up(),
+                    (f64::from(k) + 0.5) / 255.0,
+                ]
+            })
+            .collect();
+        channels.extend([f64::NAN, -1.0, 2.0, f64::INFINITY, f64::NEG_INFINITY]);
+        for c in channels {
+            let colour = DVec3::splat(c);
+            let bytes = [Bytes::Truncate.byte(c); 3];
+            let mut paths = Paths::default();
+            paths.colour(colour, bytes);
+            for (kind, rule) in [
+                (Kind::RoundBytes, Bytes::Round),
+                (Kind::Scale256, Bytes::Scale256),
+            ] {
+                assert_eq!(paths.bytes(Some(kind), bytes), [rule.byte(c); 3], "{c:e}");
+            }
+        }
+    }
+
+    #[test]
+    fn indices_that_share_a_bit_are_all_named() {
+        let mut paths = Paths::default();
+        paths.hit(3);
+        let reach = |object: usize| Reach {
+            records: HITS.bit(object),
+            bytes: None,
+        };
+        assert!(reach(3).touches(paths));
+        assert!(reach(35).touches(paths));
+        assert!(!reach(4).touches(paths));
+        paths.blocked(4, 0);
+        assert!(!reach(4).touches(paths), "a blocker is not a hit");
+    }
+}
