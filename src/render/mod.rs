@@ -41,6 +41,7 @@ use glam::DVec3;
 use objects::From;
 use record::Recorder;
 use std::borrow::Cow;
+use std::sync::atomic::{AtomicU64, Ordering};
 use tiles::Tile;
 use tracer::Tracer;
 use variant::{AsWritten, Rulebook, Rules};
@@ -459,7 +460,7 @@ impl Mark {
 /// in one render with a recorder of margins (src/render/margins.rs). The image is the
 /// plain render's, byte for byte.
 pub fn render_with_margins(scene: &Scene, options: &Options, precision: f64) -> (Image, Vec<Mark>) {
-    let marks = marked::<false, _>(scene, options, precision, |mark, _| mark);
+    let marks = marked::<false>(scene, options, precision, &[]);
     (image_of(options, &marks), marks)
 }
 
@@ -470,8 +471,15 @@ pub fn render_with_paths(
     options: &Options,
     precision: f64,
 ) -> (Image, Vec<Mark>, Vec<Paths>) {
-    let both = marked::<true, _>(scene, options, precision, |mark, paths| (mark, paths));
-    let (marks, paths): (Vec<Mark>, Vec<Paths>) = both.into_iter().unzip();
+    // Each pixel's paths, stored by the thread that renders it.
+    let slots: Vec<AtomicU64> = (0..options.width * options.height)
+        .map(|_| AtomicU64::new(0))
+        .collect();
+    let marks = marked::<true>(scene, options, precision, &slots);
+    // In place: a slot and its paths are one u64.
+    let paths = (slots.into_iter())
+        .map(|slot| Paths::from_bits(slot.into_inner()))
+        .collect();
     (image_of(options, &marks), marks, paths)
 }
 
@@ -484,45 +492,45 @@ fn image_of(options: &Options, marks: &[Mark]) -> Image {
     }
 }
 
-/// `keep(mark, paths)` of every pixel, in output order, from one render with a recorder
-/// of margins at `precision`; the paths are recorded if `PATHS` (else empty).
-fn marked<const PATHS: bool, T: Send + Clone + Default>(
+/// Every pixel's mark, in output order, from one render with a recorder of margins at
+/// `precision`; with `PATHS` each pixel's paths stored in `slots` (output order).
+fn marked<const PATHS: bool>(
     scene: &Scene,
     options: &Options,
     precision: f64,
-    keep: impl Fn(Mark, Paths) -> T + Sync,
-) -> Vec<T> {
+    slots: &[AtomicU64],
+) -> Vec<Mark> {
     let setup = Setup::new(scene, options);
     // As in `render`: the rules as written are constants to the tracer.
     match setup.rules.as_written() {
-        true => margins_of::<PATHS, _, _>(
+        true => margins_of::<PATHS, _>(
             &setup,
             setup.tracer_with(AsWritten, options),
             options,
             precision,
-            keep,
+            slots,
         ),
-        false => margins_of::<PATHS, _, _>(&setup, setup.tracer(options), options, precision, keep),
+        false => margins_of::<PATHS, _>(&setup, setup.tracer(options), options, precision, slots),
     }
 }
 
-/// Every pixel's `keep(mark, paths)` at `precision`, in output order, the paths
-/// recorded if `PATHS`.
-fn margins_of<const PATHS: bool, B: Rulebook, T: Send + Clone + Default>(
+/// Every pixel's mark at `precision`, in output order; with `PATHS` its paths in
+/// `slots`.
+fn margins_of<const PATHS: bool, B: Rulebook>(
     setup: &Setup,
     tracer: Tracer<B>,
     options: &Options,
     precision: f64,
-    keep: impl Fn(Mark, Paths) -> T + Sync,
-) -> Vec<T> {
+    slots: &[AtomicU64],
+) -> Vec<Mark> {
     let sizes = margins::Sizes::new(&setup.scene, options.max_dist, tracer.screen(), precision);
     let background = setup.rules.bytes(DVec3::ZERO);
     with_kernel!(options.kernel, K => {
-        let per_pixel = |x: usize, y: usize| -> T {
+        let per_pixel = |x: usize, y: usize| -> Mark {
             let tile = tracer.objects.tile(x, y);
             if tile.is_some_and(|tile| tile.objects.is_empty()) {
-                let mark = Mark::new(background, Fragility::default(), FirstHit::default());
-                return keep(mark, Paths::default());
+                // Its paths involve nothing: the slot's 0.
+                return Mark::new(background, Fragility::default(), FirstHit::default());
             }
             let mut rec = margins::Margins::<PATHS>::new(&sizes);
             let colour = match setup.camera.ray(x, y) {
@@ -539,8 +547,10 @@ fn margins_of<const PATHS: bool, B: Rulebook, T: Send + Clone + Default>(
             let bytes = setup.rules.bytes(colour);
             if PATHS {
                 rec.paths.colour(colour, bytes);
+                let index = setup.row_of(y, options.height) * options.width + x;
+                slots[index].store(rec.paths.bits(), Ordering::Relaxed);
             }
-            keep(Mark::new(bytes, fragility, first), rec.paths)
+            Mark::new(bytes, fragility, first)
         };
         each_pixel(setup, options, per_pixel, &mut |_| {})
     })

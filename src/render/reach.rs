@@ -48,6 +48,16 @@ impl Field {
 }
 
 impl Paths {
+    /// The paths whose bits are `bits` ([`Paths::bits`]).
+    pub(crate) fn from_bits(bits: u64) -> Paths {
+        Paths(bits)
+    }
+
+    /// The bits, to store.
+    pub(crate) fn bits(self) -> u64 {
+        self.0
+    }
+
     /// A camera or mirror ray hit `object`.
     pub(crate) fn hit(&mut self, object: usize) {
         self.0 |= HITS.bit(object);
