@@ -160,24 +160,6 @@ pub fn diagnose_and_focus(
         true => Reach::of(scene, &given, variants),
         false => None,
     };
-    // The candidate's bytes at the pixels `at`.
-    let bytes_at = |options: &Options, variants: &[Variant], at: &[usize]| -> Vec<[u8; 3]> {
-        let Some(reach) = reach(variants) else {
-            return render::render_pixels(scene, options, at);
-        };
-        let traced: Vec<usize> = at
-            .iter()
-            .copied()
-            .filter(|&i| reach.touches(paths[i]))
-            .collect();
-        let mut bytes = render::render_pixels(scene, options, &traced).into_iter();
-        (at.iter())
-            .map(|&i| match reach.touches(paths[i]) {
-                true => bytes.next().unwrap_or_default(),
-                false => reach.untouched(paths[i], reference.pixels[i]),
-            })
-            .collect()
-    };
     // The agreement a candidate would have, from its bytes on sample `k`; and a pixel it
     // explains.
     let estimate_on = |k: usize, variants: &[Variant]| -> Option<(f64, Option<usize>)> {
@@ -186,7 +168,15 @@ pub fn diagnose_and_focus(
             .try_fold(*options, |o, &v| o.with_variant(v).ok())?;
         let (sample, split) = &samples[k];
         let (sample_d, sample_a) = sample.split_at(*split);
-        let bytes = bytes_at(&options, variants, sample);
+        let bytes = match reach(variants) {
+            Some(reach) => {
+                let mut bytes = Vec::with_capacity(sample.len());
+                let at = sample.iter().copied();
+                reached(scene, &options, (reach, rendered), at, |_, b| bytes.push(b));
+                bytes
+            }
+            None => render::render_pixels(scene, &options, sample),
+        };
         let fixed: Vec<usize> = (sample_d.iter().zip(&bytes))
             .filter(|&(&i, &b)| agrees(i, b))
             .map(|(&i, _)| i)
@@ -205,26 +195,15 @@ pub fn diagnose_and_focus(
         let options = variants
             .iter()
             .try_fold(*options, |o, &v| o.with_variant(v).ok())?;
-        let agreeing = match reach(variants) {
+        let mut agreeing = 0;
+        let mut count = |i: usize, b: [u8; 3]| agreeing += usize::from(agrees(i, b));
+        match reach(variants) {
+            Some(reach) => reached(scene, &options, (reach, rendered), 0..pixels, &mut count),
             None => {
                 let image = render::render(scene, &options, |_| {});
-                (image.pixels.iter().enumerate())
-                    .filter(|&(i, &b)| agrees(i, b))
-                    .count()
+                (image.pixels.into_iter().enumerate()).for_each(|(i, b)| count(i, b));
             }
-            Some(reach) => {
-                let traced: Vec<usize> = (0..pixels).filter(|&i| reach.touches(paths[i])).collect();
-                let bytes = render::render_pixels(scene, &options, &traced);
-                let fixed = (traced.iter().zip(bytes))
-                    .filter(|&(&i, b)| agrees(i, b))
-                    .count();
-                let others = (0..pixels)
-                    .filter(|&i| !reach.touches(paths[i]))
-                    .filter(|&i| agrees(i, reach.untouched(paths[i], reference.pixels[i])))
-                    .count();
-                fixed + others
-            }
-        };
+        }
         Some(agreeing as f64 / total.max(1.0))
     };
     // Tried on the small sample, then the best few on the large one.
@@ -338,6 +317,28 @@ pub fn diagnose_and_focus(
         })
         .collect();
     (diagnoses, focus)
+}
+
+/// `each(i, bytes)` for the pixels `i` of `at` (output order) of the image under
+/// `options`, a candidate that changes only what `reach` touches: those pixels traced
+/// again, the others the reference's (stepped under a byte rule).
+fn reached(
+    scene: &Scene,
+    options: &Options,
+    (reach, rendered): (Reach, &Reference),
+    at: impl Iterator<Item = usize> + Clone,
+    mut each: impl FnMut(usize, [u8; 3]),
+) {
+    let paths = &rendered.paths;
+    let traced: Vec<usize> = at.clone().filter(|&i| reach.touches(paths[i])).collect();
+    let mut bytes = render::render_pixels(scene, options, &traced).into_iter();
+    for i in at {
+        let pixel = match reach.touches(paths[i]) {
+            true => bytes.next().unwrap_or_default(),
+            false => reach.untouched(paths[i], rendered.image.pixels[i]),
+        };
+        each(i, pixel);
+    }
 }
 
 /// "cone (line 34)" for the record a scoped variant among `variants` names.

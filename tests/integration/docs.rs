@@ -119,6 +119,12 @@ fn the_reference_check_fails_on_a_renamed_item_or_a_moved_file() {
     assert!(defines("impl Kernel for Accurate {", "Accurate"));
 }
 
+/// The text of `markdown` from `start` up to the next third-level heading.
+fn section_from<'a>(markdown: &'a str, start: &str) -> &'a str {
+    let section = &markdown[markdown.find(start).unwrap()..];
+    &section[..section.find("\n### ").unwrap()]
+}
+
 /// The fenced blocks of a Markdown text whose info string is `tag`.
 fn fenced_blocks(text: &str, tag: &str) -> Vec<String> {
     let mut blocks = Vec::new();
@@ -214,9 +220,7 @@ fn the_readme_s_trace_example_is_what_the_program_prints() {
 #[test]
 fn the_readme_s_against_example_is_what_the_program_prints() {
     let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
-    let start = readme.find("`legacy-rt` can do that lining up").unwrap();
-    let section = &readme[start..];
-    let section = &section[..section.find("\n### ").unwrap()];
+    let section = section_from(&readme, "`legacy-rt` can do that lining up");
     let blocks = fenced_blocks(section, "text");
     assert_eq!(blocks.len(), 2, "{blocks:?}");
     let command =
@@ -365,9 +369,7 @@ fn the_help_lists_every_variant() {
 #[test]
 fn the_readme_s_grading_example_is_what_the_program_prints() {
     let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
-    let start = readme.find("### Grading a class").unwrap();
-    let section = &readme[start..];
-    let section = &section[..section.find("\n### ").unwrap()];
+    let section = section_from(&readme, "### Grading a class");
     let blocks = fenced_blocks(section, "sh");
     assert_eq!(blocks.len(), 2, "{blocks:?}");
     // The README's words for what it prints, one line however the paragraph wraps.

@@ -9,6 +9,15 @@ use std::process::{Command, Output};
 
 const SCENES: [&str; 2] = ["spheres", "studio"];
 
+/// Fails the test, with the program's error, unless it succeeded.
+fn succeeded(output: &Output) {
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+}
+
 /// Runs the binary in `dir` with `args`, nothing on standard input.
 fn run_in(dir: &Path, args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_legacy-rt"))
@@ -28,11 +37,7 @@ fn render(dir: &Path, name: &str, flags: &[&str], out: &str) {
     let out = out.to_str().unwrap();
     args.extend(["-o", out]);
     let made = common::run(&args, &scene);
-    assert!(
-        made.status.success(),
-        "{}",
-        String::from_utf8_lossy(&made.stderr)
-    );
+    succeeded(&made);
 }
 
 /// The same pixels as a P3 (text) PPM, as some students' programs write.
@@ -156,11 +161,7 @@ fn every_row_is_what_compare_says_of_its_pair() {
         &dir,
         &["grade", "--threads", "2", "scenes", "subs", "-o", "report"],
     );
-    assert!(
-        graded.status.success(),
-        "{}",
-        String::from_utf8_lossy(&graded.stderr)
-    );
+    succeeded(&graded);
     let grades = read_grades(&dir.join("report"));
     let rows = grades["rows"].as_array().unwrap();
     assert_eq!(rows.len(), 9 * SCENES.len());
@@ -258,11 +259,7 @@ fn a_required_size_makes_other_sizes_wrong_size() {
         "grade", "--size", "80", "60", "scenes", "subs", "-o", "report",
     ];
     let graded = run_in(&dir, &args);
-    assert!(
-        graded.status.success(),
-        "{}",
-        String::from_utf8_lossy(&graded.stderr)
-    );
+    succeeded(&graded);
     let grades = read_grades(&dir.join("report"));
     rows_are_compares(&dir, &grades, &["--size", "80", "60"]);
     for row in grades["rows"].as_array().unwrap() {
@@ -292,11 +289,7 @@ fn a_required_size_makes_other_sizes_wrong_size() {
         "schemed",
     ];
     let graded = run_in(&dir, &args);
-    assert!(
-        graded.status.success(),
-        "{}",
-        String::from_utf8_lossy(&graded.stderr)
-    );
+    succeeded(&graded);
     let schemed = read_grades(&dir.join("schemed"));
     for row in schemed["rows"].as_array().unwrap() {
         let studio = row["scene"] == "studio";
@@ -335,11 +328,7 @@ fn a_required_size_makes_other_sizes_wrong_size() {
 fn shards_merged_equal_the_whole_class() {
     let dir = class("grade-shards");
     let whole = run_in(&dir, &["grade", "scenes", "subs", "-o", "whole"]);
-    assert!(
-        whole.status.success(),
-        "{}",
-        String::from_utf8_lossy(&whole.stderr)
-    );
+    succeeded(&whole);
     let mut sizes = Vec::new();
     for k in 1..=3 {
         let shard = format!("{k}/3");
@@ -348,11 +337,7 @@ fn shards_merged_equal_the_whole_class() {
             &dir,
             &["grade", "--shard", &shard, "scenes", "subs", "-o", &part],
         );
-        assert!(
-            graded.status.success(),
-            "{}",
-            String::from_utf8_lossy(&graded.stderr)
-        );
+        succeeded(&graded);
         sizes.push(
             read_grades(&dir.join(&part))["rows"]
                 .as_array()
@@ -368,11 +353,7 @@ fn shards_merged_equal_the_whole_class() {
             "grade", "--merge", "part3", "part1", "part2", "-o", "merged",
         ],
     );
-    assert!(
-        merged.status.success(),
-        "{}",
-        String::from_utf8_lossy(&merged.stderr)
-    );
+    succeeded(&merged);
     assert_eq!(
         read_grades(&dir.join("merged")),
         read_grades(&dir.join("whole"))
@@ -414,11 +395,7 @@ fn gradescope_s_score_is_the_sum_of_its_tests() {
         "report",
     ];
     let graded = run_in(&dir, &args);
-    assert!(
-        graded.status.success(),
-        "{}",
-        String::from_utf8_lossy(&graded.stderr)
-    );
+    succeeded(&graded);
     let results: Value =
         serde_json::from_slice(&fs::read(dir.join("results.json")).unwrap()).unwrap();
     let tests = results["tests"].as_array().unwrap();
@@ -466,11 +443,7 @@ fn grade_refuses_what_it_cannot_read_or_would_overwrite() {
     // An earlier report whose page was made a hard link to a student's image, and whose
     // CSV a symbolic link to it: grading again replaces the links, not the image.
     let first = run_in(&dir, &["grade", "scenes", "subs", "-o", "again"]);
-    assert!(
-        first.status.success(),
-        "{}",
-        String::from_utf8_lossy(&first.stderr)
-    );
+    succeeded(&first);
     let image = dir.join("subs/ada/spheres.ppm");
     let before = fs::read(&image).unwrap();
     fs::remove_file(dir.join("again/index.html")).unwrap();
@@ -478,11 +451,7 @@ fn grade_refuses_what_it_cannot_read_or_would_overwrite() {
     fs::remove_file(dir.join("again/grades.csv")).unwrap();
     std::os::unix::fs::symlink(&image, dir.join("again/grades.csv")).unwrap();
     let second = run_in(&dir, &["grade", "scenes", "subs", "-o", "again"]);
-    assert!(
-        second.status.success(),
-        "{}",
-        String::from_utf8_lossy(&second.stderr)
-    );
+    succeeded(&second);
     assert_eq!(
         fs::read(&image).unwrap(),
         before,
