@@ -121,17 +121,37 @@ pub fn diagnose_and_focus(
     student: &Image,
     levels: u8,
 ) -> (Vec<Diagnosis>, Option<Focus>) {
-    let reference = &rendered.image;
     // Which pixels differ, a bit each (not a list of them all): one pass over the images.
-    let pixels = reference.pixels.len();
-    let mut mask = vec![0u64; pixels.div_ceil(64)];
+    let reference = &rendered.image;
+    let mut mask = vec![0u64; reference.pixels.len().div_ceil(64)];
     let mut differing = 0;
     for (i, (&a, &b)) in reference.pixels.iter().zip(&student.pixels).enumerate() {
-        if pixel_difference(a, b) > levels {
-            mask[i / 64] |= 1 << (i % 64);
-            differing += 1;
-        }
+        let beyond = pixel_difference(a, b) > levels;
+        mask[i / 64] |= u64::from(beyond) << (i % 64);
+        differing += usize::from(beyond);
     }
+    with_mask(
+        scene,
+        options,
+        rendered,
+        student,
+        levels,
+        (&mask, differing),
+    )
+}
+
+/// [`diagnose_and_focus`] given which pixels differ beyond `levels` (`mask`: pixel i is
+/// bit i % 64 of word i / 64) and how many.
+pub(super) fn with_mask(
+    scene: &Scene,
+    options: &Options,
+    rendered: &Reference,
+    student: &Image,
+    levels: u8,
+    (mask, differing): (&[u64], usize),
+) -> (Vec<Diagnosis>, Option<Focus>) {
+    let reference = &rendered.image;
+    let pixels = reference.pixels.len();
     let agreeing = pixels - differing;
     // `agreement(reference, student, levels)`, from the count.
     let before = agreeing as f64 / pixels.max(1) as f64;
@@ -139,15 +159,13 @@ pub fn diagnose_and_focus(
         return (Vec::new(), None);
     }
     let agrees = |i: usize, bytes: [u8; 3]| pixel_difference(bytes, student.pixels[i]) <= levels;
-    // The samples, every n-th differing and agreeing pixel.
-    let differs = |i: usize| mask[i / 64] >> (i % 64) & 1 == 1;
-    // Each sample: its differing pixels, then its agreeing ones, and where they start.
+    // The samples, every n-th differing and agreeing pixel. Each sample: its differing
+    // pixels, then its agreeing ones, and where they start.
     let samples = SAMPLE.map(|n| {
         let every = |count: usize| count.div_ceil(n.max(1)).max(1);
-        let (d, a) = (every(differing), every(agreeing));
-        let mut sample: Vec<usize> = (0..pixels).filter(|&i| differs(i)).step_by(d).collect();
+        let mut sample = every_nth(mask, pixels, true, every(differing));
         let split = sample.len();
-        sample.extend((0..pixels).filter(|&i| !differs(i)).step_by(a));
+        sample.extend(every_nth(mask, pixels, false, every(agreeing)));
         (sample, split)
     });
     let total = reference.pixels.len() as f64;
@@ -330,6 +348,13 @@ fn reached(
     mut each: impl FnMut(usize, [u8; 3]),
 ) {
     let paths = &rendered.paths;
+    // A byte rule alone traces nothing (and sets up no renderer).
+    if !reach.traces() {
+        for i in at {
+            each(i, reach.untouched(paths[i], rendered.image.pixels[i]));
+        }
+        return;
+    }
     let traced: Vec<usize> = at.clone().filter(|&i| reach.touches(paths[i])).collect();
     let mut bytes = render::render_pixels(scene, options, &traced).into_iter();
     for i in at {
@@ -339,6 +364,35 @@ fn reached(
         };
         each(i, pixel);
     }
+}
+
+/// The pixels whose bit in `mask` is `set` (of the first `pixels`), the first and then
+/// every `every`-th: `(0..pixels).filter(..).step_by(every)`, a word at a time.
+fn every_nth(mask: &[u64], pixels: usize, set: bool, every: usize) -> Vec<usize> {
+    let mut picked = Vec::new();
+    // How many more of the pixels to pass before the next is picked.
+    let mut pass = 0;
+    for (w, &word) in mask.iter().enumerate() {
+        let mut bits = if set { word } else { !word };
+        let valid = pixels.saturating_sub(w * 64);
+        if valid < 64 {
+            bits &= (1u64 << valid) - 1;
+        }
+        loop {
+            let count = bits.count_ones() as usize;
+            if pass >= count {
+                pass -= count;
+                break;
+            }
+            for _ in 0..pass {
+                bits &= bits - 1;
+            }
+            picked.push(w * 64 + bits.trailing_zeros() as usize);
+            bits &= bits - 1;
+            pass = every - 1;
+        }
+    }
+    picked
 }
 
 /// "cone (line 34)" for the record a scoped variant among `variants` names.
@@ -519,6 +573,26 @@ pub fn roundest(low: f64, high: f64) -> (f64, f64) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn every_nth_picks_as_step_by_does() {
+        // A mask of 200 pixels whose bits follow a pattern with runs and gaps.
+        let pixels: usize = 200;
+        let set = |i: usize| (i * 7 + i / 13) % 5 < 2 || (64..70).contains(&i);
+        let mut mask = vec![0u64; pixels.div_ceil(64)];
+        for i in (0..pixels).filter(|&i| set(i)) {
+            mask[i / 64] |= 1 << (i % 64);
+        }
+        for every in [1, 2, 3, 7, 64, 65, 500] {
+            for want in [true, false] {
+                let expected: Vec<usize> = (0..pixels)
+                    .filter(|&i| set(i) == want)
+                    .step_by(every)
+                    .collect();
+                assert_eq!(every_nth(&mask, pixels, want, every), expected, "{every}");
+            }
+        }
+    }
 
     #[test]
     fn the_roundest_number_of_a_range() {

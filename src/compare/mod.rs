@@ -220,6 +220,24 @@ pub fn pixel_difference(a: [u8; 3], b: [u8; 3]) -> u8 {
     (0..3).map(|c| a[c].abs_diff(b[c])).max().unwrap_or(0)
 }
 
+/// The sum of the three channels' differences.
+fn channel_sum_of(a: [u8; 3], b: [u8; 3]) -> u16 {
+    (0..3).map(|c| u16::from(a[c].abs_diff(b[c]))).sum()
+}
+
+/// The pixels of word `w` of a mask (pixel i: bit i % 64 of word i / 64) whose bits are
+/// set, in order.
+fn set_bits(w: usize, word: u64) -> impl Iterator<Item = usize> {
+    let mut bits = word;
+    std::iter::from_fn(move || {
+        (bits != 0).then(|| {
+            let i = w * 64 + bits.trailing_zeros() as usize;
+            bits &= bits - 1;
+            i
+        })
+    })
+}
+
 /// The share of pixels (0 to 1) whose channels all differ by at most `levels`.
 pub fn agreement(reference: &Image, student: &Image, levels: u8) -> f64 {
     let within = (reference.pixels.iter().zip(&student.pixels))
@@ -336,21 +354,60 @@ pub fn report(
         let (a, b) = (reference.pixels[i], student.pixels[i]);
         rendered.fragility(i).excuses(a, b, levels)
     };
-    // One pass: each pixel's difference, the count beyond the tolerance and of those
-    // excused, and the sum of the channels' differences.
-    let mut differences = Vec::with_capacity(pixels);
+    // The differing pixels counted by the object the reference's camera ray hits there
+    // (the last slot: the background), when the scene is known.
+    let grouped = match scene {
+        Some((scene, _)) if rendered.marks.len() == pixels => Some(scene.objects.len()),
+        _ => None,
+    };
+    let mut by_object = vec![0usize; grouped.map_or(0, |objects| objects + 1)];
+    // The differences that count first, then the largest difference, then the largest
+    // sum over the channels, then the first in the image: the same order on every run.
+    // Kept in a heap of the `worst` first so far, whose top is the last of them: memory
+    // for the list, not for every differing pixel.
+    let mut kept = std::collections::BinaryHeap::with_capacity(settings.worst.min(pixels) + 1);
+    // One pass: each pixel's difference, the sum of its channels' differences, and
+    // whether it is beyond the tolerance (a bit each, without a branch: half the pixels
+    // of an image under another byte rule differ, in no pattern a branch could learn).
+    let (mut channel_sum, mut max_channel_difference) = (0u64, 0u8);
+    let mut beyond = Vec::with_capacity(pixels.div_ceil(64));
+    for (a, b) in (reference.pixels.chunks(64)).zip(student.pixels.chunks(64)) {
+        let mut word = 0u64;
+        for (k, (&a, &b)) in a.iter().zip(b).enumerate() {
+            let difference = pixel_difference(a, b);
+            channel_sum += u64::from(channel_sum_of(a, b));
+            max_channel_difference = max_channel_difference.max(difference);
+            word |= u64::from(difference > levels) << k;
+        }
+        beyond.push(word);
+    }
+    // Then the pixels beyond it: the count, those excused, their objects, the worst.
     let (mut differing_pixels, mut differing_fragile_pixels) = (0, 0);
-    let mut channel_sum = 0u64;
-    for (i, (&a, &b)) in reference.pixels.iter().zip(&student.pixels).enumerate() {
-        let difference = pixel_difference(a, b);
-        differences.push(difference);
-        channel_sum += (0..3).map(|c| u64::from(a[c].abs_diff(b[c]))).sum::<u64>();
-        if difference > levels {
-            differing_pixels += 1;
-            differing_fragile_pixels += usize::from(excused(i));
+    let differing = (beyond.iter().enumerate()).flat_map(|(w, &word)| {
+        differing_pixels += word.count_ones() as usize;
+        set_bits(w, word)
+    });
+    for i in differing {
+        let (a, b) = (reference.pixels[i], student.pixels[i]);
+        let excused = excused(i);
+        differing_fragile_pixels += usize::from(excused);
+        if let Some(background) = grouped {
+            let object = rendered.marks[i].first().index().unwrap_or(background);
+            by_object[object] += 1;
+        }
+        // The order above in one number: excused last, then the larger difference, the
+        // larger sum, the earlier pixel first.
+        let difference = 255 - u128::from(pixel_difference(a, b));
+        let sum = 1023 - u128::from(channel_sum_of(a, b));
+        let key = u128::from(excused) << 127 | difference << 119 | sum << 109 | i as u128;
+        if kept.len() == settings.worst && kept.peek().is_none_or(|&last| key >= last) {
+            continue;
+        }
+        kept.push(key);
+        if kept.len() > settings.worst {
+            kept.pop();
         }
     }
-    let beyond = |i: usize| differences[i] > levels;
     let fragile_pixels = rendered
         .marks
         .iter()
@@ -364,42 +421,23 @@ pub fn report(
         false => Verdict::Differ,
     };
     let groups = match scene {
-        Some((scene, _)) if differing_pixels > 0 && rendered.marks.len() == pixels => {
-            group(scene, &rendered.marks, (0..pixels).filter(|&i| beyond(i)))
-        }
+        Some((scene, _)) if differing_pixels > 0 && grouped.is_some() => group(scene, &by_object),
         _ => Vec::new(),
     };
-    // The differences that count first, then the largest difference, then the largest
-    // sum over the channels, then the first in the image: the same order on every run.
-    // Only the first `worst` are sorted.
-    let sum = |i: usize| -> u16 {
-        let (a, b) = (reference.pixels[i], student.pixels[i]);
-        (0..3).map(|c| u16::from(a[c].abs_diff(b[c]))).sum()
-    };
-    // Kept in a heap of the `worst` first so far, whose top is the last of them: memory
-    // for the list, not for every differing pixel.
-    let key = |i: usize| (excused(i), std::cmp::Reverse((differences[i], sum(i))), i);
-    let mut kept = std::collections::BinaryHeap::with_capacity(settings.worst.min(pixels) + 1);
-    for i in (0..pixels).filter(|&i| beyond(i)) {
-        let key = key(i);
-        if kept.len() == settings.worst && kept.peek().is_none_or(|last| key >= *last) {
-            continue;
-        }
-        kept.push(key);
-        if kept.len() > settings.worst {
-            kept.pop();
-        }
-    }
     let order = kept.into_sorted_vec();
-    let worst = (order.iter().map(|&(_, _, i)| i))
-        .map(|i| Worst {
-            x: i % width,
-            y: height - 1 - i / width,
-            reference: reference.pixels[i],
-            student: student.pixels[i],
-            difference: differences[i],
-            fragile: excused(i),
-            trace: None,
+    let worst = (order.iter())
+        .map(|&key| {
+            let i = (key & ((1 << 109) - 1)) as usize;
+            let (a, b) = (reference.pixels[i], student.pixels[i]);
+            Worst {
+                x: i % width,
+                y: height - 1 - i / width,
+                reference: a,
+                student: b,
+                difference: pixel_difference(a, b),
+                fragile: key >> 127 == 1,
+                trace: None,
+            }
         })
         .collect();
     let (diagnosis, focus) = match scene {
@@ -409,7 +447,9 @@ pub fn report(
                 height,
                 ..*options
             };
-            let (found, focus) = diagnose_and_focus(scene, &options, rendered, student, levels);
+            let differing = (&beyond[..], differing_pixels);
+            let (found, focus) =
+                diagnose::with_mask(scene, &options, rendered, student, levels, differing);
             (Some(found), focus)
         }
         _ => (None, None),
@@ -426,7 +466,7 @@ pub fn report(
         fragile_pixels,
         differing_fragile_pixels,
         differing_fraction,
-        max_channel_difference: differences.iter().copied().max().unwrap_or(0),
+        max_channel_difference,
         mean_absolute_error: channel_sum as f64 / (3 * pixels).max(1) as f64,
         groups,
         worst,
@@ -436,19 +476,10 @@ pub fn report(
     })
 }
 
-/// The pixels `differing` (output indices) counted by the object `marks` name there.
-fn group(
-    scene: &Scene,
-    marks: &[render::Mark],
-    differing: impl Iterator<Item = usize>,
-) -> Vec<Group> {
-    let mut counts = vec![0usize; scene.objects.len() + 1];
-    let background = scene.objects.len();
-    let mut total = 0;
-    for i in differing {
-        counts[marks[i].first().index().unwrap_or(background)] += 1;
-        total += 1;
-    }
+/// The groups of the differing pixels, from their count per object (`counts`, the
+/// background last).
+fn group(scene: &Scene, counts: &[usize]) -> Vec<Group> {
+    let total: usize = counts.iter().sum();
     let mut groups: Vec<Group> = (counts.iter().enumerate())
         .filter(|&(_, &n)| n > 0)
         .map(|(index, &pixels)| {

@@ -27,11 +27,11 @@ pub(crate) struct Builder {
 }
 
 impl Builder {
-    /// `cells` empty lists.
-    pub(crate) fn new(cells: usize) -> Builder {
+    /// `cells` empty lists; those not `wanted` keep none.
+    pub(crate) fn new(cells: usize, wanted: impl Fn(usize) -> bool) -> Builder {
         Builder {
             lists: vec![Vec::new(); cells],
-            kept: vec![true; cells],
+            kept: (0..cells).map(wanted).collect(),
         }
     }
 

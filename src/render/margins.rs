@@ -238,7 +238,7 @@ impl<'s, 'a, const PATHS: bool> Margins<'s, 'a, PATHS> {
     }
 
     /// One object's test along the current ray.
-    #[inline]
+    #[inline(always)]
     fn test(&mut self, object: usize, t: Option<f64>, notes: &[HitNote]) {
         let (margin, at) = self.notes_margin(object, notes);
         let hit = t.filter(|&t| t > 0.0);
@@ -283,6 +283,7 @@ impl<'s, 'a, const PATHS: bool> Margins<'s, 'a, PATHS> {
     }
 
     /// The closest-hit query's answer: which of its decisions chose it.
+    #[inline(always)]
     fn closest(&mut self, hit: Option<(usize, f64)>) {
         self.first.get_or_insert(hit.map(|(object, _)| object));
         let best = hit.map_or(f64::INFINITY, |(_, t)| t);
@@ -366,6 +367,7 @@ impl<const PATHS: bool> Recorder for Margins<'_, '_, PATHS> {
     const EVERY_OBJECT: bool = false;
     const NOTES: bool = true;
 
+    #[inline(always)]
     fn record(&mut self, event: impl FnOnce() -> Event) {
         match event() {
             Event::Segment {
@@ -433,6 +435,7 @@ impl<const PATHS: bool> Recorder for Margins<'_, '_, PATHS> {
         }
     }
 
+    #[inline(always)]
     fn tested(&mut self, object: usize, t: Option<f64>, notes: &[HitNote]) {
         self.test(object, t, notes);
     }

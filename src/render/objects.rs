@@ -60,12 +60,13 @@ pub(crate) struct Objects<'a, B> {
 
 impl<'a, B: Rulebook> Objects<'a, B> {
     /// The aggregate of `scene` for a render with `options` and `rules`, with tiles for
-    /// the camera's rays when a camera is given.
+    /// the camera's rays when a camera is given (those `cells` marks, or all).
     pub(crate) fn new(
         scene: &'a Scene,
         rules: B,
         options: &Options,
         camera: Option<&Camera>,
+        cells: Option<&[bool]>,
     ) -> Objects<'a, B> {
         let boxes = Boxes::for_kernel(scene, options.kernel);
         let accelerate = options.accelerate;
@@ -74,7 +75,7 @@ impl<'a, B: Rulebook> Objects<'a, B> {
         let hidden = |index: usize| rules.some_hidden() && rules.object(index).hidden();
         let tiles = (camera.filter(|_| accelerate)).and_then(|camera| {
             let pixels = (&camera.xs[..], &camera.ys[..]);
-            Tiles::new(scene, &boxes, camera.viewpoint, pixels, hidden)
+            Tiles::new(scene, &boxes, camera.viewpoint, pixels, hidden, cells)
         });
         Objects {
             scene,

@@ -93,11 +93,9 @@ impl Paths {
             Some(Kind::Scale256) => SCALE_256,
             _ => return bytes,
         };
-        let mut out = bytes;
-        for (c, byte) in out.iter_mut().enumerate() {
-            *byte += (self.0 >> (first + c as u32) & 1) as u8;
-        }
-        out
+        let steps = self.0 >> first;
+        let step = |c: u32| (steps >> c & 1) as u8;
+        [bytes[0] + step(0), bytes[1] + step(1), bytes[2] + step(2)]
     }
 }
 
@@ -152,6 +150,11 @@ impl Reach {
             };
         }
         Some(reach)
+    }
+
+    /// Whether any pixel may need to be traced again (not for a byte rule alone).
+    pub fn traces(self) -> bool {
+        self.records != 0
     }
 
     /// Whether a pixel whose path is `paths` may change: it must be traced again.

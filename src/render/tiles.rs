@@ -95,13 +95,16 @@ impl Tiles {
     /// objects than [`MOST_OBJECTS`]), when there are more objects than pixels (the
     /// lists would cost more than they save: a 2x2 image of a million spheres), or when
     /// the view is too wide or the pixel coordinates are not in order. The objects
-    /// `hidden` (the variant hidden: camera rays pass through them) hide nothing.
+    /// `hidden` (the variant hidden: camera rays pass through them) hide nothing. With
+    /// `cells`, only the tiles it marks ([`cell`]) get lists: the others keep none, at
+    /// the cost of the pixels in them alone (`compare --diagnose` traces a few).
     pub(crate) fn new(
         scene: &Scene,
         boxes: &Boxes,
         eye: DVec3,
         (xs, ys): (&[f64], &[f64]),
         hidden: impl Fn(usize) -> bool,
+        cells: Option<&[bool]>,
     ) -> Option<Tiles> {
         if scene.objects.len() > xs.len() * ys.len() {
             return None;
@@ -140,13 +143,17 @@ impl Tiles {
             .collect();
         let across = xs.len().div_ceil(TILE);
         let down = ys.len().div_ceil(TILE);
+        let wanted = |tile: usize| cells.is_none_or(|cells| cells.get(tile) == Some(&true));
         let tiles = (0..down).flat_map(|ty| (0..across).map(move |tx| (tx, ty)));
         let corners: Vec<[DVec2; 4]> = tiles.map(|(tx, ty)| corners(xs, ys, tx, ty)).collect();
         // Per tile, the planes whose hits count at every pixel there (bit k: the k-th
         // plane): whatever lies behind one of them cannot be the closest hit there. A
         // hidden plane is passed through.
-        let occluders: Vec<u32> = (corners.iter())
-            .map(|corners| {
+        let occluders: Vec<u32> = (corners.iter().enumerate())
+            .map(|(tile, corners)| {
+                if !wanted(tile) {
+                    return 0;
+                }
                 (seen.iter().enumerate())
                     .filter(|&(k, _)| !hidden(plane_objects[k]))
                     .filter(|(_, plane)| plane.counts_throughout(corners))
@@ -162,7 +169,7 @@ impl Tiles {
             .collect();
         let mut order: Vec<usize> = (0..scene.objects.len()).collect();
         order.sort_by(|&i, &j| nearest[i].total_cmp(&nearest[j]).then(i.cmp(&j)));
-        let mut lists = Builder::new(across * down);
+        let mut lists = Builder::new(across * down, wanted);
         for index in order {
             match &reaches[index] {
                 Reach::Nowhere => {}
@@ -179,6 +186,9 @@ impl Tiles {
                 Reach::Plane(k) => {
                     let plane = &seen[*k];
                     for (tile, corners) in corners.iter().enumerate() {
+                        if !wanted(tile) {
+                            continue;
+                        }
                         let hidden = (seen.iter().enumerate()).any(|(j, nearer)| {
                             j != *k
                                 && occluders[tile] & 1 << j != 0
@@ -203,10 +213,21 @@ impl Tiles {
     #[inline]
     pub(crate) fn at(&self, x: usize, y: usize) -> Option<Tile<'_>> {
         Some(Tile {
-            objects: self.lists.get(y / TILE * self.across + x / TILE)?,
+            objects: self.lists.get(cell(x, y, self.across))?,
             nearest: &self.nearest,
         })
     }
+}
+
+/// The tile of pixel (x, y) of an image `across` tiles wide ([`tiles_across`]).
+#[inline]
+pub(crate) fn cell(x: usize, y: usize, across: usize) -> usize {
+    y / TILE * across + x / TILE
+}
+
+/// How many tiles across and down an image of `width` x `height` pixels has.
+pub(crate) fn tiles_across(width: usize, height: usize) -> (usize, usize) {
+    (width.div_ceil(TILE), height.div_ceil(TILE))
 }
 
 /// A distance from `eye` short of any point of the box (min, max), by [`MARGIN`] of
@@ -507,7 +528,7 @@ mod tests {
                 let f32_boxes = Boxes::for_kernel(&scene, KernelChoice::TextbookF32);
                 let pixels = (&camera.xs[..], &camera.ys[..]);
                 let tiles_of =
-                    |boxes| Tiles::new(&scene, boxes, camera.viewpoint, pixels, |_| false);
+                    |boxes| Tiles::new(&scene, boxes, camera.viewpoint, pixels, |_| false, None);
                 let (Some(tiles), Some(f32_tiles)) = (tiles_of(&boxes), tiles_of(&f32_boxes))
                 else {
                     continue;

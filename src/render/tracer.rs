@@ -31,16 +31,18 @@ pub(crate) struct Tracer<'a, B> {
 
 impl<'a, B: Rulebook> Tracer<'a, B> {
     /// The tracer of `scene` (as its variants changed it) under `options` and `rules`,
-    /// with tiles for the camera's rays when a camera is given.
+    /// with tiles for the camera's rays when a camera is given: every tile's list, or
+    /// those `cells` marks ([`Tiles::new`](super::tiles::Tiles::new)).
     pub(crate) fn new(
         scene: &'a Scene,
         rules: B,
         options: &Options,
         camera: Option<&Camera>,
+        cells: Option<&[bool]>,
     ) -> Tracer<'a, B> {
         Tracer {
             scene,
-            objects: Objects::new(scene, rules, options, camera),
+            objects: Objects::new(scene, rules, options, camera, cells),
             rules,
             stage: options.stage,
             show: options.show,
@@ -159,7 +161,7 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
     /// Where `ray` meets `object` at `t`: the point, the normal (as computed, spec §4.4;
     /// turned toward the ray under facing-normals, reversed under flipped-normal) and the
     /// material there (tiles, textures, shaders).
-    #[inline]
+    #[inline(always)]
     fn surface(
         &self,
         object: usize,

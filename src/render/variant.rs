@@ -648,6 +648,7 @@ impl Bytes {
     /// nearest step (an integer for truncation, an integer plus ½ for round-bytes). A
     /// channel of exactly 0 (nothing lit it, nothing reflected into it) or NaN is 0 in
     /// any arithmetic: infinite. Above the clamp the step is the clamp's own.
+    #[inline]
     pub(crate) fn margin(self, channel: f64) -> f64 {
         if channel.is_nan() || channel <= 0.0 {
             return f64::INFINITY;

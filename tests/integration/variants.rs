@@ -359,6 +359,39 @@ fn a_variant_of_one_record_changes_only_the_pixels_whose_paths_name_it() {
     assert!(touched_somewhere > checked / 2 && untouched_somewhere > checked / 2);
 }
 
+/// [`render::render_pixels`] gives the whole render's bytes at whichever pixels it is
+/// asked for: a block (the tiles it covers get their lists, the others none), pixels
+/// scattered one to a tile (no lists), every pixel; upside down too (rows counted the
+/// other way) and with the first object hidden (a hidden plane hides nothing).
+#[test]
+fn render_pixels_gives_the_renders_bytes_at_any_pixels() {
+    let (width, height) = (64, 48);
+    let block: Vec<usize> = (0..width * height)
+        .filter(|i| (5..27).contains(&(i % width)) && (9..30).contains(&(i / width)))
+        .collect();
+    let scattered: Vec<usize> = (0..width * height).step_by(37).collect();
+    let every: Vec<usize> = (0..width * height).collect();
+    for path in every_scene() {
+        let scene = legacy_rt::load(&std::fs::read_to_string(&path).unwrap()).unwrap();
+        let plain = Options::new(width, height);
+        let mut variants = vec![Variant::parse("upside-down").unwrap()];
+        if let Some(first) = scene.objects.first() {
+            variants.push(Variant::parse(&format!("hidden@{}", first.line)).unwrap());
+        }
+        let options =
+            std::iter::once(plain).chain(variants.iter().map(|&v| plain.with_variant(v).unwrap()));
+        for options in options {
+            let whole = render::render(&scene, &options, |_| {});
+            for pixels in [&block, &scattered, &every] {
+                let bytes = render::render_pixels(&scene, &options, pixels);
+                for (&i, &b) in pixels.iter().zip(&bytes) {
+                    assert_eq!(b, whole.pixels[i], "{}: pixel {i}", path.display());
+                }
+            }
+        }
+    }
+}
+
 /// The edits whose record may be hit where it was not (geometry) can change any pixel:
 /// no reach is claimed for them.
 #[test]
