@@ -562,7 +562,7 @@ fn margins_of<const PATHS: bool, B: Rulebook>(
 /// `compare --diagnose`, which tries a variant on a sample of pixels, and re-traces the
 /// pixels a variant can change, rather than render whole images. The camera rays go
 /// through the lists of the tiles the pixels fall in where they are dense enough to pay
-/// for them ([`PIXELS_PER_LIST`]); the hierarchy is kept.
+/// for them (`PIXELS_PER_LIST`, 8 a tile); the hierarchy is kept.
 pub fn render_pixels(scene: &Scene, options: &Options, indices: &[usize]) -> Vec<[u8; 3]> {
     // The kernel chosen once, outside the loop over the pixels (as in `render`).
     with_kernel!(options.kernel, K => at_pixels(
