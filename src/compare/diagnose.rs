@@ -121,23 +121,9 @@ pub fn diagnose_and_focus(
     student: &Image,
     levels: u8,
 ) -> (Vec<Diagnosis>, Option<Focus>) {
-    // Which pixels differ, a bit each (not a list of them all): one pass over the images.
-    let reference = &rendered.image;
-    let mut mask = vec![0u64; reference.pixels.len().div_ceil(64)];
-    let mut differing = 0;
-    for (i, (&a, &b)) in reference.pixels.iter().zip(&student.pixels).enumerate() {
-        let beyond = pixel_difference(a, b) > levels;
-        mask[i / 64] |= u64::from(beyond) << (i % 64);
-        differing += usize::from(beyond);
-    }
-    with_mask(
-        scene,
-        options,
-        rendered,
-        student,
-        levels,
-        (&mask, differing),
-    )
+    // Which pixels differ, a bit each (not a list of them all).
+    let (mask, count) = super::differing(&rendered.image, student, levels, |_, _, _| {});
+    with_mask(scene, options, rendered, student, levels, (&mask, count))
 }
 
 /// [`diagnose_and_focus`] given which pixels differ beyond `levels` (`mask`: pixel i is

@@ -225,6 +225,31 @@ fn channel_sum_of(a: [u8; 3], b: [u8; 3]) -> u16 {
     (0..3).map(|c| u16::from(a[c].abs_diff(b[c]))).sum()
 }
 
+/// Which pixels differ by more than `levels` (pixel i: bit i % 64 of word i / 64) and how
+/// many, in one pass without a branch per pixel (under another byte rule half the pixels
+/// differ, in no pattern a branch could learn); `each(reference, student, difference)`
+/// is told every pixel on the way.
+pub(crate) fn differing(
+    reference: &Image,
+    student: &Image,
+    levels: u8,
+    mut each: impl FnMut([u8; 3], [u8; 3], u8),
+) -> (Vec<u64>, usize) {
+    let mut mask = Vec::with_capacity(reference.pixels.len().div_ceil(64));
+    let mut count = 0;
+    for (a, b) in (reference.pixels.chunks(64)).zip(student.pixels.chunks(64)) {
+        let mut word = 0u64;
+        for (k, (&a, &b)) in a.iter().zip(b).enumerate() {
+            let difference = pixel_difference(a, b);
+            each(a, b, difference);
+            word |= u64::from(difference > levels) << k;
+        }
+        count += word.count_ones() as usize;
+        mask.push(word);
+    }
+    (mask, count)
+}
+
 /// The pixels of word `w` of a mask (pixel i: bit i % 64 of word i / 64) whose bits are
 /// set, in order.
 fn set_bits(w: usize, word: u64) -> impl Iterator<Item = usize> {
@@ -366,28 +391,16 @@ pub fn report(
     // Kept in a heap of the `worst` first so far, whose top is the last of them: memory
     // for the list, not for every differing pixel.
     let mut kept = std::collections::BinaryHeap::with_capacity(settings.worst.min(pixels) + 1);
-    // One pass: each pixel's difference, the sum of its channels' differences, and
-    // whether it is beyond the tolerance (a bit each, without a branch: half the pixels
-    // of an image under another byte rule differ, in no pattern a branch could learn).
+    // One pass: the pixels beyond the tolerance, and each pixel's channel differences.
     let (mut channel_sum, mut max_channel_difference) = (0u64, 0u8);
-    let mut beyond = Vec::with_capacity(pixels.div_ceil(64));
-    for (a, b) in (reference.pixels.chunks(64)).zip(student.pixels.chunks(64)) {
-        let mut word = 0u64;
-        for (k, (&a, &b)) in a.iter().zip(b).enumerate() {
-            let difference = pixel_difference(a, b);
-            channel_sum += u64::from(channel_sum_of(a, b));
-            max_channel_difference = max_channel_difference.max(difference);
-            word |= u64::from(difference > levels) << k;
-        }
-        beyond.push(word);
-    }
-    // Then the pixels beyond it: the count, those excused, their objects, the worst.
-    let (mut differing_pixels, mut differing_fragile_pixels) = (0, 0);
-    let differing = (beyond.iter().enumerate()).flat_map(|(w, &word)| {
-        differing_pixels += word.count_ones() as usize;
-        set_bits(w, word)
+    let (beyond, differing_pixels) = differing(reference, student, levels, |a, b, difference| {
+        channel_sum += u64::from(channel_sum_of(a, b));
+        max_channel_difference = max_channel_difference.max(difference);
     });
-    for i in differing {
+    // Then the pixels beyond it: those excused, their objects, the worst.
+    let mut differing_fragile_pixels = 0;
+    let set = (beyond.iter().enumerate()).flat_map(|(w, &word)| set_bits(w, word));
+    for i in set {
         let (a, b) = (reference.pixels[i], student.pixels[i]);
         let excused = excused(i);
         differing_fragile_pixels += usize::from(excused);
@@ -447,9 +460,9 @@ pub fn report(
                 height,
                 ..*options
             };
-            let differing = (&beyond[..], differing_pixels);
+            let mask = (&beyond[..], differing_pixels);
             let (found, focus) =
-                diagnose::with_mask(scene, &options, rendered, student, levels, differing);
+                diagnose::with_mask(scene, &options, rendered, student, levels, mask);
             (Some(found), focus)
         }
         _ => (None, None),

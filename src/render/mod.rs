@@ -35,14 +35,13 @@ pub use variant::{Kind, VARIANTS, Variant, Variants};
 pub const MAX_PRECISION: f64 = record::MARGIN_REACH;
 
 use crate::scene::Scene;
-use crate::shapes::kernel::{KernelChoice, with_kernel};
+use crate::shapes::kernel::{Kernel, KernelChoice, with_kernel};
 use crate::shapes::{Ray, unit};
 use glam::DVec3;
 use objects::From;
 use record::Recorder;
 use std::borrow::Cow;
 use std::sync::atomic::{AtomicU64, Ordering};
-use tiles::Tile;
 use tracer::Tracer;
 use variant::{AsWritten, Rulebook, Rules};
 
@@ -240,21 +239,30 @@ fn pixels_of<B: Rulebook>(
     // What a camera ray that hits nothing gives, in every stage and diagnostic image.
     let background = setup.rules.bytes(DVec3::ZERO);
     with_kernel!(options.kernel, K => {
-        let pixel = |x: usize, y: usize| -> [u8; 3] {
-            // A tile that sees no object: its camera rays hit nothing, and the pixel is
-            // the background's, without a ray.
-            let tile = tracer.objects.tile(x, y);
-            if tile.is_some_and(|tile| tile.objects.is_empty()) {
-                return background;
-            }
-            let colour = match setup.camera.ray(x, y) {
-                Some(ray) => tracer.pixel::<K>(ray, tile, &mut ()),
-                None => DVec3::ZERO,
-            };
-            setup.rules.bytes(colour)
-        };
+        let pixel = |x, y| pixel_bytes::<K, B>(setup, &tracer, background, x, y);
         each_pixel(setup, options, pixel, progress)
     })
+}
+
+/// The bytes of pixel (x, y), its camera ray traced by `tracer` through its tile's list;
+/// `background`, the bytes of black, without a ray where the tile sees no object.
+#[inline(always)]
+fn pixel_bytes<K: Kernel, B: Rulebook>(
+    setup: &Setup,
+    tracer: &Tracer<B>,
+    background: [u8; 3],
+    x: usize,
+    y: usize,
+) -> [u8; 3] {
+    let tile = tracer.objects.tile(x, y);
+    if tile.is_some_and(|tile| tile.objects.is_empty()) {
+        return background;
+    }
+    let colour = match setup.camera.ray(x, y) {
+        Some(ray) => tracer.pixel::<K>(ray, tile, &mut ()),
+        None => DVec3::ZERO,
+    };
+    setup.rules.bytes(colour)
 }
 
 /// The rays a render of the scene casts (camera, shadow, reflected), counted by
@@ -565,20 +573,10 @@ fn margins_of<const PATHS: bool, B: Rulebook>(
 /// for them (`PIXELS_PER_LIST`, 8 a tile); the hierarchy is kept.
 pub fn render_pixels(scene: &Scene, options: &Options, indices: &[usize]) -> Vec<[u8; 3]> {
     // The kernel chosen once, outside the loop over the pixels (as in `render`).
-    with_kernel!(options.kernel, K => at_pixels(
-        scene,
-        options,
-        indices,
-        true,
-        |setup, tracer, ray, tile| {
-            let background = tile.is_some_and(|tile| tile.objects.is_empty());
-            let colour = match ray {
-                Some(ray) if !background => tracer.pixel::<K>(ray, tile, &mut ()),
-                _ => DVec3::ZERO,
-            };
-            setup.rules.bytes(colour)
-        },
-    ))
+    with_kernel!(options.kernel, K => at_pixels(scene, options, indices, |setup, tracer, x, y| {
+        let background = setup.rules.bytes(DVec3::ZERO);
+        pixel_bytes::<K, _>(setup, tracer, background, x, y)
+    }))
 }
 
 /// How many of the pixels to trace a tile must hold, on average, for its list to be
@@ -588,31 +586,28 @@ pub fn render_pixels(scene: &Scene, options: &Options, indices: &[usize]) -> Vec
 /// with them): the lists pay from about 7 pixels a tile.
 const PIXELS_PER_LIST: usize = 8;
 
-/// `per_pixel(setup, tracer, camera ray, tile)` for each of the pixels `indices` (output
-/// order), with a tracer with the lists of the tiles they fall in if `tiled` (and they
-/// hold [`PIXELS_PER_LIST`] of them a tile).
+/// `per_pixel(setup, tracer, x, y)` for each of the pixels `indices` (output order), with
+/// a tracer with the lists of the tiles they fall in where they hold [`PIXELS_PER_LIST`]
+/// of them a tile.
 fn at_pixels<T>(
     scene: &Scene,
     options: &Options,
     indices: &[usize],
-    tiled: bool,
-    per_pixel: impl Fn(&Setup, &Tracer<&Rules>, Option<Ray>, Option<Tile>) -> T,
+    per_pixel: impl Fn(&Setup, &Tracer<&Rules>, usize, usize) -> T,
 ) -> Vec<T> {
     let setup = Setup::new(scene, options);
     let mut rows = Rows::new(&setup, options);
-    let cells = tiled.then(|| {
-        let (across, down) = tiles::tiles_across(options.width, options.height);
-        let mut cells = vec![false; across * down];
-        let mut count = 0;
-        for &i in indices {
-            let (x, y) = rows.at(i);
-            let cell = &mut cells[tiles::cell(x, y, across)];
-            count += usize::from(!*cell);
-            *cell = true;
-        }
-        (indices.len() >= PIXELS_PER_LIST * count).then_some(cells)
-    });
-    let cells = cells.flatten();
+    // The tiles the pixels fall in, and whether they are dense enough for lists.
+    let (across, down) = tiles::tiles_across(options.width, options.height);
+    let mut cells = vec![false; across * down];
+    let mut count = 0;
+    for &i in indices {
+        let (x, y) = rows.at(i);
+        let cell = &mut cells[tiles::cell(x, y, across)];
+        count += usize::from(!*cell);
+        *cell = true;
+    }
+    let cells = (indices.len() >= PIXELS_PER_LIST * count).then_some(cells);
     let camera = cells.is_some().then_some(&setup.camera);
     let tracer = Tracer::new(
         &setup.scene,
@@ -624,8 +619,7 @@ fn at_pixels<T>(
     (indices.iter())
         .map(|&i| {
             let (x, y) = rows.at(i);
-            let tile = tracer.objects.tile(x, y);
-            per_pixel(&setup, &tracer, setup.camera.ray(x, y), tile)
+            per_pixel(&setup, &tracer, x, y)
         })
         .collect()
 }
@@ -712,10 +706,11 @@ impl Recorder for Involved {
 
 /// What the paths of the pixels `indices` (output order) involve, under `options`.
 pub fn involved(scene: &Scene, options: &Options, indices: &[usize]) -> Vec<Involved> {
-    at_pixels(scene, options, indices, false, |_, tracer, ray, _| {
+    at_pixels(scene, options, indices, |setup, tracer, x, y| {
         let mut path = Involved::default();
-        if let Some(ray) = ray {
-            with_kernel!(options.kernel, K => tracer.pixel::<K>(ray, None, &mut path));
+        if let Some(ray) = setup.camera.ray(x, y) {
+            let tile = tracer.objects.tile(x, y);
+            with_kernel!(options.kernel, K => tracer.pixel::<K>(ray, tile, &mut path));
         }
         path
     })

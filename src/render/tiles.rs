@@ -141,8 +141,7 @@ impl Tiles {
                 },
             })
             .collect();
-        let across = xs.len().div_ceil(TILE);
-        let down = ys.len().div_ceil(TILE);
+        let (across, down) = tiles_across(xs.len(), ys.len());
         let wanted = |tile: usize| cells.is_none_or(|cells| cells.get(tile) == Some(&true));
         let tiles = (0..down).flat_map(|ty| (0..across).map(move |tx| (tx, ty)));
         let corners: Vec<[DVec2; 4]> = tiles.map(|(tx, ty)| corners(xs, ys, tx, ty)).collect();

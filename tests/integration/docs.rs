@@ -125,6 +125,11 @@ fn section_from<'a>(markdown: &'a str, start: &str) -> &'a str {
     &section[..section.find("\n### ").unwrap()]
 }
 
+/// The README's text.
+fn readme() -> String {
+    std::fs::read_to_string(root().join("README.md")).unwrap()
+}
+
 /// The fenced blocks of a Markdown text whose info string is `tag`.
 fn fenced_blocks(text: &str, tag: &str) -> Vec<String> {
     let mut blocks = Vec::new();
@@ -194,7 +199,7 @@ fn fenced_blocks_are_found_by_tag() {
 
 #[test]
 fn the_readme_s_trace_example_is_what_the_program_prints() {
-    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
+    let readme = readme();
     let start = readme
         .find("When no variant explains it, trace a pixel")
         .unwrap();
@@ -219,7 +224,7 @@ fn the_readme_s_trace_example_is_what_the_program_prints() {
 
 #[test]
 fn the_readme_s_against_example_is_what_the_program_prints() {
-    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
+    let readme = readme();
     let section = section_from(&readme, "`legacy-rt` can do that lining up");
     let blocks = fenced_blocks(section, "text");
     assert_eq!(blocks.len(), 2, "{blocks:?}");
@@ -250,7 +255,7 @@ fn the_readme_s_against_example_is_what_the_program_prints() {
 
 #[test]
 fn the_readme_s_compare_example_is_what_the_program_prints() {
-    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
+    let readme = readme();
     let start = readme.find("### When your image differs").unwrap();
     let end = readme
         .find("When no variant explains it, trace a pixel")
@@ -304,7 +309,7 @@ fn the_readme_s_compare_example_is_what_the_program_prints() {
 /// is named where the README says what the tests read, not in a command).
 #[test]
 fn the_readme_s_commands_need_nothing_beside_the_repository() {
-    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
+    let readme = readme();
     let mut commands: Vec<String> = ["text", "sh"]
         .iter()
         .flat_map(|tag| fenced_blocks(&readme, tag))
@@ -368,7 +373,7 @@ fn the_help_lists_every_variant() {
 
 #[test]
 fn the_readme_s_grading_example_is_what_the_program_prints() {
-    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
+    let readme = readme();
     let section = section_from(&readme, "### Grading a class");
     let blocks = fenced_blocks(section, "sh");
     assert_eq!(blocks.len(), 2, "{blocks:?}");
