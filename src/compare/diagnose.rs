@@ -199,15 +199,15 @@ pub(super) fn with_mask(
         let options = variants
             .iter()
             .try_fold(*options, |o, &v| o.with_variant(v).ok())?;
-        let mut agreeing = 0;
-        let mut count = |i: usize, b: [u8; 3]| agreeing += usize::from(agrees(i, b));
-        match reach(variants) {
-            Some(reach) => reached(scene, &options, (reach, rendered), 0..pixels, &mut count),
+        let agreeing = match reach(variants) {
+            Some(reach) => count_agreeing(scene, &options, (reach, rendered), student, levels),
             None => {
                 let image = render::render(scene, &options, |_| {});
-                (image.pixels.into_iter().enumerate()).for_each(|(i, b)| count(i, b));
+                (image.pixels.into_iter().enumerate())
+                    .filter(|&(i, b)| agrees(i, b))
+                    .count()
             }
-        }
+        };
         Some(agreeing as f64 / total.max(1.0))
     };
     // Tried on the small sample, then the best few on the large one.
@@ -350,6 +350,39 @@ fn reached(
         };
         each(i, pixel);
     }
+}
+
+/// How many pixels of the image under `options` agree with `student` within `levels`,
+/// for a candidate that changes only what `reach` touches: those pixels traced again, the
+/// others the reference's (stepped under a byte rule). One pass over the reference counts
+/// the pixels it does not touch and picks those it does.
+fn count_agreeing(
+    scene: &Scene,
+    options: &Options,
+    (reach, rendered): (Reach, &Reference),
+    student: &Image,
+    levels: u8,
+) -> usize {
+    let agrees = |bytes: [u8; 3], theirs: [u8; 3]| pixel_difference(bytes, theirs) <= levels;
+    let reference = rendered.paths.iter().zip(&rendered.image.pixels);
+    let mut traced = Vec::new();
+    let mut count = 0;
+    for (i, ((&paths, &bytes), &theirs)) in reference.zip(&student.pixels).enumerate() {
+        match reach.touches(paths) {
+            true => traced.push(i),
+            false => count += usize::from(agrees(reach.untouched(paths, bytes), theirs)),
+        }
+    }
+    if !traced.is_empty() {
+        let bytes = render::render_pixels(scene, options, &traced);
+        let theirs = traced.iter().map(|&i| student.pixels[i]);
+        count += bytes
+            .into_iter()
+            .zip(theirs)
+            .filter(|&(b, t)| agrees(b, t))
+            .count();
+    }
+    count
 }
 
 /// The pixels whose bit in `mask` is `set` (of the first `pixels`), the first and then

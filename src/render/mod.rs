@@ -116,12 +116,11 @@ pub struct Image {
 }
 
 /// A channel in [0, 1] to a byte: clamp, times 255, truncate (spec §4.7). NaN gives 0.
+/// Rust's cast from f64 to u8 truncates and saturates (below 0 and NaN to 0, above 255
+/// to 255), which is the clamp: no branch.
 #[inline]
 pub(crate) fn to_byte(channel: f64) -> u8 {
-    if channel.is_nan() {
-        return 0;
-    }
-    (channel.clamp(0.0, 1.0) * 255.0) as u8
+    (channel * 255.0) as u8
 }
 
 /// The camera of spec §4.1: world x of each column, world y of each row.
@@ -420,12 +419,12 @@ impl Fragility {
         })
     }
 
-    /// The pixel of a colour whose decisions' least margin is `least` and whose channels'
-    /// byte margins are `bytes`, at precision `precision`.
-    fn of(least: f64, bytes: [f64; 3], precision: f64) -> Fragility {
+    /// The pixel of a colour whose decisions' least margin is `least`, at precision
+    /// `precision`, and whose channels `bytes` says are fragile.
+    fn of(least: f64, bytes: [bool; 3], precision: f64) -> Fragility {
         let mut bits = u8::from(least < precision) * Fragility::STRUCTURAL;
-        for (c, margin) in bytes.into_iter().enumerate() {
-            bits |= u8::from(margin < precision) << c;
+        for (c, fragile) in bytes.into_iter().enumerate() {
+            bits |= u8::from(fragile) << c;
         }
         Fragility(bits)
     }
@@ -548,9 +547,10 @@ fn margins_of<const PATHS: bool, B: Rulebook>(
             // The colour is some sixteen roundings from the hit point: ambient plus each
             // light's diffuse × emissivity × cos θ / dist, over the path, times the
             // mirrors.
-            let error = COLOUR_ROUNDINGS * rec.kappa;
-            let margin = |c: f64| setup.rules.bytes.margin(c) / error;
-            let bytes = [margin(colour.x), margin(colour.y), margin(colour.z)];
+            // A byte is fragile where its margin, over that many, is below the precision.
+            let limit = precision * (COLOUR_ROUNDINGS * rec.kappa);
+            let fragile = |c: f64| setup.rules.bytes.fragile(c, limit);
+            let bytes = [fragile(colour.x), fragile(colour.y), fragile(colour.z)];
             let fragility = Fragility::of(rec.least, bytes, precision);
             let first = FirstHit::of(rec.first.flatten());
             let bytes = setup.rules.bytes(colour);
@@ -573,8 +573,7 @@ fn margins_of<const PATHS: bool, B: Rulebook>(
 /// for them (`PIXELS_PER_LIST`, 8 a tile); the hierarchy is kept.
 pub fn render_pixels(scene: &Scene, options: &Options, indices: &[usize]) -> Vec<[u8; 3]> {
     // The kernel chosen once, outside the loop over the pixels (as in `render`).
-    with_kernel!(options.kernel, K => at_pixels(scene, options, indices, |setup, tracer, x, y| {
-        let background = setup.rules.bytes(DVec3::ZERO);
+    with_kernel!(options.kernel, K => at_pixels(scene, options, indices, |setup, tracer, background, x, y| {
         pixel_bytes::<K, _>(setup, tracer, background, x, y)
     }))
 }
@@ -587,14 +586,14 @@ pub fn render_pixels(scene: &Scene, options: &Options, indices: &[usize]) -> Vec
 /// 2.2 ms with them): the lists pay from about 7 pixels a tile.
 const PIXELS_PER_LIST: usize = 8;
 
-/// `per_pixel(setup, tracer, x, y)` for each of the pixels `indices` (output order), with
-/// a tracer with the lists of the tiles they fall in where they hold [`PIXELS_PER_LIST`]
-/// of them a tile.
+/// `per_pixel(setup, tracer, background, x, y)` for each of the pixels `indices` (output
+/// order), with a tracer with the lists of the tiles they fall in where they hold
+/// [`PIXELS_PER_LIST`] of them a tile, and the bytes of black under the rules.
 fn at_pixels<T>(
     scene: &Scene,
     options: &Options,
     indices: &[usize],
-    per_pixel: impl Fn(&Setup, &Tracer<&Rules>, usize, usize) -> T,
+    per_pixel: impl Fn(&Setup, &Tracer<&Rules>, [u8; 3], usize, usize) -> T,
 ) -> Vec<T> {
     let setup = Setup::new(scene, options);
     let mut rows = Rows::new(&setup, options);
@@ -617,12 +616,15 @@ fn at_pixels<T>(
         camera,
         cells.as_deref(),
     );
-    (indices.iter())
-        .map(|&i| {
-            let (x, y) = rows.at(i);
-            per_pixel(&setup, &tracer, x, y)
-        })
-        .collect()
+    let background = setup.rules.bytes(DVec3::ZERO);
+    // A plain loop: as `map(..).collect()` the same tracing took some 15 % longer (a02,
+    // every pixel, 14.9 ms against 13.7 ms; `render` 12.8 ms).
+    let mut pixels = Vec::with_capacity(indices.len());
+    for &i in indices {
+        let (x, y) = rows.at(i);
+        pixels.push(per_pixel(&setup, &tracer, background, x, y));
+    }
+    pixels
 }
 
 /// A pixel's (x, y) from its index in output order, the row's division done once per
@@ -707,7 +709,7 @@ impl Recorder for Involved {
 
 /// What the paths of the pixels `indices` (output order) involve, under `options`.
 pub fn involved(scene: &Scene, options: &Options, indices: &[usize]) -> Vec<Involved> {
-    at_pixels(scene, options, indices, |setup, tracer, x, y| {
+    at_pixels(scene, options, indices, |setup, tracer, _, x, y| {
         let mut path = Involved::default();
         if let Some(ray) = setup.camera.ray(x, y) {
             let tile = tracer.objects.tile(x, y);

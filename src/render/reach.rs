@@ -75,14 +75,20 @@ impl Paths {
 
     /// The colour's bytes are `bytes` under the reference's rule (spec §4.7's truncation):
     /// the steps under the other rules. [`Bytes::byte`]'s byte exceeds `bytes` exactly
-    /// where its value before the cast reaches the next integer (a NaN channel clamps to
-    /// 0 here, and gives 0 there).
+    /// where its value before the cast reaches the next integer; a byte of 255 has no
+    /// step above it, and below 255 the channel is below 1 (or negative, or NaN, which
+    /// reach nothing), so no clamp is needed.
     pub(crate) fn colour(&mut self, colour: DVec3, bytes: [u8; 3]) {
-        let c = colour.max(DVec3::ZERO).min(DVec3::ONE);
-        let next = DVec3::from_array(bytes.map(f64::from)) + 1.0;
-        let round = (c * 255.0 + 0.5).cmpge(next).bitmask();
-        let scaled = (c * 256.0).min(DVec3::splat(255.0)).cmpge(next).bitmask();
-        self.0 |= u64::from(round) << ROUND | u64::from(scaled) << SCALE_256;
+        let mut steps = 0;
+        for (c, (channel, byte)) in colour.to_array().into_iter().zip(bytes).enumerate() {
+            let next = f64::from(byte) + 1.0;
+            let below = byte < 255;
+            let round = below && channel * 255.0 + 0.5 >= next;
+            let scaled = below && channel * 256.0 >= next;
+            steps |= u64::from(round) << (ROUND + c as u32)
+                | u64::from(scaled) << (SCALE_256 + c as u32);
+        }
+        self.0 |= steps;
     }
 
     /// The bytes of this pixel under the byte rule `rule` (round-bytes or scale-256),

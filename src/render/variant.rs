@@ -634,12 +634,13 @@ impl Bytes {
     /// The byte of `channel` under this rule. NaN gives 0.
     #[inline]
     pub(crate) fn byte(self, channel: f64) -> u8 {
+        // The cast truncates (the floor of these values from 0 up) and saturates: below
+        // 0 and NaN give 0, above 255 gives 255, which clamps the channel to [0, 1]
+        // first would give too.
         match self {
             Bytes::Truncate => to_byte(channel),
-            _ if channel.is_nan() => 0,
-            // A cast truncates, which for these non-negative values is the floor.
-            Bytes::Round => (channel.clamp(0.0, 1.0) * 255.0 + 0.5) as u8,
-            Bytes::Scale256 => (channel.clamp(0.0, 1.0) * 256.0).min(255.0) as u8,
+            Bytes::Round => (channel * 255.0 + 0.5) as u8,
+            Bytes::Scale256 => (channel * 256.0) as u8,
         }
     }
 
@@ -648,10 +649,26 @@ impl Bytes {
     /// nearest step (an integer for truncation, an integer plus ½ for round-bytes). A
     /// channel of exactly 0 (nothing lit it, nothing reflected into it) or NaN is 0 in
     /// any arithmetic: infinite. Above the clamp the step is the clamp's own.
+    #[cfg(test)]
+    fn margin(self, channel: f64) -> f64 {
+        self.step_distance(channel)
+            .map_or(f64::INFINITY, |(distance, scaled)| distance / scaled)
+    }
+
+    /// Whether `channel`'s margin (|v - k| / v, as above) is below `limit`: compared as
+    /// |v - k| < limit · v, without a division (three a pixel, in the reference's every
+    /// pixel).
     #[inline]
-    pub(crate) fn margin(self, channel: f64) -> f64 {
+    pub(crate) fn fragile(self, channel: f64, limit: f64) -> bool {
+        self.step_distance(channel)
+            .is_some_and(|(distance, scaled)| distance < limit * scaled)
+    }
+
+    /// |v - k| and v of the margin above; `None` for a channel of 0 or NaN.
+    #[inline]
+    fn step_distance(self, channel: f64) -> Option<(f64, f64)> {
         if channel.is_nan() || channel <= 0.0 {
-            return f64::INFINITY;
+            return None;
         }
         let (scaled, offset, top) = match self {
             Bytes::Truncate => (channel * 255.0, 0.0, 255.0),
@@ -660,16 +677,16 @@ impl Bytes {
         };
         if scaled >= top {
             // 255 from the last step up.
-            return (scaled - top) / scaled;
+            return Some((scaled - top, scaled));
         }
         let x = scaled - offset;
         if x < 0.0 {
             // 0 up to the first step.
-            return -x / scaled;
+            return Some((-x, scaled));
         }
         // The steps on either side (a cast truncates, cheaper than a rounding call).
         let below = (x as i64) as f64;
-        (x - below).min(below + 1.0 - x) / scaled
+        Some(((x - below).min(below + 1.0 - x), scaled))
     }
 }
 
@@ -877,9 +894,12 @@ impl Rules {
     /// A colour's bytes (spec §4.7, or round-bytes or scale-256).
     #[inline(always)]
     pub(crate) fn bytes(&self, colour: DVec3) -> [u8; 3] {
+        // The rule chosen once, not per channel.
+        let channels = colour.to_array();
         match self.bytes {
-            Bytes::Truncate => colour.to_array().map(to_byte),
-            rule => colour.to_array().map(|c| rule.byte(c)),
+            Bytes::Truncate => channels.map(|c| Bytes::Truncate.byte(c)),
+            Bytes::Round => channels.map(|c| Bytes::Round.byte(c)),
+            Bytes::Scale256 => channels.map(|c| Bytes::Scale256.byte(c)),
         }
     }
 
@@ -1083,6 +1103,11 @@ mod tests {
         assert_eq!(Bytes::Truncate.margin(0.0), f64::INFINITY);
         // Round-bytes below its first step, 0.5: 0.25 is a quarter away from it.
         assert!(close(Bytes::Round.margin(0.25 / 255.0), 0.25 / 0.25));
+        // Fragile where the margin is below the limit: 0.25 / 100.25 is 0.002494.
+        assert!(Bytes::Truncate.fragile(100.25 / 255.0, 0.0025));
+        assert!(!Bytes::Truncate.fragile(100.25 / 255.0, 0.0024));
+        assert!(Bytes::Scale256.fragile(0.5, 1e-12));
+        assert!(!Bytes::Truncate.fragile(0.0, 1.0) && !Bytes::Round.fragile(f64::NAN, 1.0));
     }
 
     #[test]
@@ -1095,6 +1120,38 @@ mod tests {
         assert_eq!(high, [254, 255, 255]);
         assert_eq!(Bytes::Scale256.byte(1.0), 255); // 256 clamped
         assert_eq!(Bytes::Round.byte(f64::NAN), 0);
+    }
+
+    #[test]
+    fn the_saturating_casts_are_the_clamped_formulas() {
+        // The rules as the spec writes them: clamp to [0, 1], scale, truncate; NaN 0.
+        let written = |rule: Bytes, c: f64| -> u8 {
+            if c.is_nan() {
+                return 0;
+            }
+            let c = c.clamp(0.0, 1.0);
+            match rule {
+                Bytes::Truncate => (c * 255.0).floor() as u8,
+                Bytes::Round => (c * 255.0 + 0.5).floor() as u8,
+                Bytes::Scale256 => (c * 256.0).min(255.0).floor() as u8,
+            }
+        };
+        // Every step's edges (for 255 and 256 levels) and their neighbours, and what
+        // lies outside [0, 1].
+        let mut channels = vec![f64::NAN, f64::INFINITY, f64::NEG_INFINITY, -0.0, 1e-300];
+        channels.extend([-1.0, -1e-3, 1.0, 1.0 + 1e-9, 2.0, 1e300, -1e300]);
+        for k in 0..=256 {
+            for scale in [255.0, 256.0] {
+                for edge in [f64::from(k) / scale, (f64::from(k) + 0.5) / scale] {
+                    channels.extend([edge, edge.next_down(), edge.next_up()]);
+                }
+            }
+        }
+        for c in channels {
+            for rule in [Bytes::Truncate, Bytes::Round, Bytes::Scale256] {
+                assert_eq!(rule.byte(c), written(rule, c), "{rule:?} {c:e}");
+            }
+        }
     }
 
     #[test]
