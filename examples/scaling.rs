@@ -177,7 +177,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
          logarithmic. The comparison with POV-Ray 3.7 on three scenes is \
          `bench/compare.sh`."
     )?;
-    std::fs::write(root.join("docs/performance.md"), md)?;
+    // The last section, the per-pixel floor, is bench/floor.sh's (callgrind): kept.
+    let path = root.join("docs/performance.md");
+    let old = std::fs::read_to_string(&path).unwrap_or_default();
+    if let Some(at) = old.find("## The per-pixel floor") {
+        writeln!(md, "\n{}", &old[at..].trim_end())?;
+    }
+    std::fs::write(path, md)?;
     chart(&points, &root.join("docs/performance.svg"))?;
     Ok(())
 }
