@@ -130,7 +130,7 @@ impl Tiles {
             .enumerate()
             .filter(|(index, _)| boxes.get(*index).is_none())
             .filter_map(|(index, object)| Some((index, object.shape.plane()?)))
-            .map(|(index, p)| (index, SeenPlane::new(p.normal, p.point, eye)))
+            .map(|(index, p)| (index, SeenPlane::new(p.normal, p.point, eye, (xs, ys))))
             .unzip();
         let reaches: Vec<Reach> = (0..scene.objects.len())
             .map(|index| match boxes.get(index) {
@@ -143,22 +143,30 @@ impl Tiles {
             .collect();
         let (across, down) = tiles_across(xs.len(), ys.len());
         let wanted = |tile: usize| cells.is_none_or(|cells| cells.get(tile) == Some(&true));
-        let tiles = (0..down).flat_map(|ty| (0..across).map(move |tx| (tx, ty)));
-        let corners: Vec<[DVec2; 4]> = tiles.map(|(tx, ty)| corners(xs, ys, tx, ty)).collect();
-        // Per tile, the planes whose hits count at every pixel there (bit k: the k-th
-        // plane): whatever lies behind one of them cannot be the closest hit there. A
-        // hidden plane is passed through.
-        let occluders: Vec<u32> = (corners.iter().enumerate())
-            .map(|(tile, corners)| {
+        // Tile (tx, ty) of a tile's index.
+        let place = |tile: usize| (tile % across, tile / across);
+        // Per tile, the planes every ray through it meets ahead (bit k: the k-th plane),
+        // and of those the planes whose hits count at every pixel there: whatever lies
+        // behind one of them cannot be the closest hit there. A hidden plane is passed
+        // through.
+        let (ahead, occluders): (Vec<u32>, Vec<u32>) = (0..across * down)
+            .map(|tile| {
                 if !wanted(tile) {
-                    return 0;
+                    return (0, 0);
                 }
-                (seen.iter().enumerate())
-                    .filter(|&(k, _)| !hidden(plane_objects[k]))
-                    .filter(|(_, plane)| plane.counts_throughout(corners))
-                    .fold(0, |mask, (k, _)| mask | 1 << k)
+                let (mut ahead, mut occluders) = (0, 0);
+                for (k, plane) in seen.iter().enumerate() {
+                    let at = plane.at(place(tile));
+                    if plane.ahead(&at) {
+                        ahead |= 1 << k;
+                        if !hidden(plane_objects[k]) && plane.counts_throughout(&at) {
+                            occluders |= 1 << k;
+                        }
+                    }
+                }
+                (ahead, occluders)
             })
-            .collect();
+            .unzip();
         let nearest: Vec<f64> = (0..scene.objects.len())
             .map(|index| {
                 boxes
@@ -184,16 +192,21 @@ impl Tiles {
                 }
                 Reach::Plane(k) => {
                     let plane = &seen[*k];
-                    for (tile, corners) in corners.iter().enumerate() {
+                    for tile in 0..across * down {
                         if !wanted(tile) {
                             continue;
                         }
+                        let at = plane.at(place(tile));
+                        // Behind a nearer plane: both met ahead throughout, then the
+                        // sign of s - s' at the corners.
+                        let both = |j: usize| ahead[tile] & (1 << *k | 1 << j) == 1 << *k | 1 << j;
                         let hidden = (seen.iter().enumerate()).any(|(j, nearer)| {
                             j != *k
                                 && occluders[tile] & 1 << j != 0
-                                && plane.behind(nearer, corners)
+                                && both(j)
+                                && plane.beyond(&at, nearer, &nearer.at(place(tile)))
                         });
-                        if !hidden && !plane.behind_the_eye(corners) {
+                        if !hidden && !plane.behind_the_eye(&at) {
                             lists.add(tile, index);
                         }
                     }
@@ -238,17 +251,10 @@ fn nearest(eye: DVec3, min: DVec3, max: DVec3) -> f64 {
     gap.length() * (1.0 - MARGIN)
 }
 
-/// The world points of the corner pixels of tile (tx, ty).
-fn corners(xs: &[f64], ys: &[f64], tx: usize, ty: usize) -> [DVec2; 4] {
-    let last = |v: &[f64], t: usize| v[(t * TILE + TILE - 1).min(v.len() - 1)];
-    let (x0, x1) = (xs[tx * TILE], last(xs, tx));
-    let (y0, y1) = (ys[ty * TILE], last(ys, ty));
-    [
-        DVec2::new(x0, y0),
-        DVec2::new(x1, y0),
-        DVec2::new(x0, y1),
-        DVec2::new(x1, y1),
-    ]
+/// The world coordinates of the first and the last pixel of tile `t` along `v` (the
+/// camera's xs or ys): a tile's corners are their four pairs.
+fn edges(v: &[f64], t: usize) -> [f64; 2] {
+    [v[t * TILE], v[(t * TILE + TILE - 1).min(v.len() - 1)]]
 }
 
 /// A plane as the camera rays see it: along the ray E + s (P - E) through the screen
@@ -264,59 +270,80 @@ struct SeenPlane {
     /// a and the size of its terms (the rounding of Q and E counts too).
     a: f64,
     a_size: f64,
+    /// The terms of d(P) = Nx (Px - Ex) + Ny (Py - Ey) + Nz (0 - Ez) at the tiles'
+    /// corners: per tile column its two x terms, per tile row its two y terms, and the z
+    /// term, each computed once.
+    columns: Vec<[f64; 2]>,
+    rows: Vec<[f64; 2]>,
+    z: f64,
 }
 
 impl SeenPlane {
-    fn new(normal: DVec3, point: DVec3, eye: DVec3) -> SeenPlane {
+    /// The plane of `normal` through `point`, seen from `eye` through the pixels at `xs`
+    /// and `ys`.
+    fn new(normal: DVec3, point: DVec3, eye: DVec3, (xs, ys): (&[f64], &[f64])) -> SeenPlane {
         let terms = normal * (point - eye);
+        let (across, down) = tiles_across(xs.len(), ys.len());
         SeenPlane {
             normal,
             point,
             eye,
             a: terms.element_sum(),
             a_size: terms.abs().element_sum() + normal.abs().dot(point.abs() + eye.abs()),
+            columns: (0..across)
+                .map(|t| edges(xs, t).map(|x| normal.x * (x - eye.x)))
+                .collect(),
+            rows: (0..down)
+                .map(|t| edges(ys, t).map(|y| normal.y * (y - eye.y)))
+                .collect(),
+            z: normal.z * (0.0 - eye.z),
         }
     }
 
-    /// d(P) and the size of its terms at the screen point `corner`.
-    fn d(&self, corner: DVec2) -> (f64, f64) {
-        let terms = self.normal * (DVec3::new(corner.x, corner.y, 0.0) - self.eye);
-        (terms.element_sum(), terms.abs().element_sum())
+    /// d(P) and the size of its terms (x + y + z and |x| + |y| + |z|, summed in that
+    /// order) at the four corners of tile (tx, ty): what the tests below read.
+    fn at(&self, (tx, ty): (usize, usize)) -> [(f64, f64); 4] {
+        let ([x0, x1], [y0, y1]) = (self.columns[tx], self.rows[ty]);
+        [(x0, y0), (x1, y0), (x0, y1), (x1, y1)]
+            .map(|(x, y)| (x + y + self.z, x.abs() + y.abs() + self.z.abs()))
     }
 
-    /// Whether every ray through the tile meets the plane behind the eye (s < 0): a
-    /// and d(P) of opposite signs at all four corners.
-    fn behind_the_eye(&self, corners: &[DVec2; 4]) -> bool {
+    /// Whether every ray through the tile (d(P) `at` its corners) meets the plane behind
+    /// the eye (s < 0): a and d(P) of opposite signs at all four corners.
+    fn behind_the_eye(&self, at: &[(f64, f64); 4]) -> bool {
         let a = sign(self.a, self.a_size);
-        a.is_some() && corners.iter().all(|&c| sign_of(self.d(c)) == a.map(|a| !a))
+        a.is_some() && at.iter().all(|&d| sign_of(d) == a.map(|a| !a))
     }
 
     /// Whether every ray through the tile meets the plane in front of the eye (s > 0):
     /// a and d(P) of one sign at all four corners.
-    fn ahead(&self, corners: &[DVec2; 4]) -> bool {
+    fn ahead(&self, at: &[(f64, f64); 4]) -> bool {
         let a = sign(self.a, self.a_size);
-        a.is_some() && corners.iter().all(|&c| sign_of(self.d(c)) == a)
+        a.is_some() && at.iter().all(|&d| sign_of(d) == a)
     }
 
-    /// Whether every ray through the tile hits the plane beyond the screen (s > 1, so
-    /// z < 0 and the hit counts, spec §5.1), the eye being in front of the screen
-    /// (E.z > 0): a - d(P) of a's sign at all four corners.
-    fn counts_throughout(&self, corners: &[DVec2; 4]) -> bool {
+    /// Whether every ray through the tile, all meeting the plane ahead, hits it beyond
+    /// the screen (s > 1, so z < 0 and the hit counts, spec §5.1), the eye being in front
+    /// of the screen (E.z > 0): a - d(P) of a's sign at all four corners.
+    fn counts_throughout(&self, at: &[(f64, f64); 4]) -> bool {
         self.eye.z > 0.0
-            && self.ahead(corners)
-            && corners.iter().all(|&c| {
-                let (d, d_size) = self.d(c);
+            && at.iter().all(|&(d, d_size)| {
                 sign(self.a - d, self.a_size + d_size) == sign(self.a, self.a_size)
             })
     }
 
-    /// Whether every ray through the tile meets this plane beyond `nearer` (s > s'):
-    /// with both ahead, the sign of a d'(P) - a' d(P) (linear in P) at all four corners.
-    fn behind(&self, nearer: &SeenPlane, corners: &[DVec2; 4]) -> bool {
-        self.ahead(corners)
-            && nearer.ahead(corners)
-            && corners.iter().all(|&c| {
-                let ((d, d_size), (e, e_size)) = (self.d(c), nearer.d(c));
+    /// Whether every ray through the tile meets this plane beyond `nearer` (s > s'),
+    /// both met ahead throughout (the caller's test) and their d(P) `at` and `nearer_at`
+    /// the corners: the sign of a d'(P) - a' d(P) (linear in P) at all four.
+    fn beyond(
+        &self,
+        at: &[(f64, f64); 4],
+        nearer: &SeenPlane,
+        nearer_at: &[(f64, f64); 4],
+    ) -> bool {
+        at.iter()
+            .zip(nearer_at)
+            .all(|(&(d, d_size), &(e, e_size))| {
                 let apart = self.a * e - nearer.a * d;
                 let size = self.a_size * e_size + nearer.a_size * d_size;
                 // s - s' = (a d' - a' d) / (d d'), and d d' has the sign of a a'.
