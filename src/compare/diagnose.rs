@@ -21,9 +21,11 @@
 //! bytes after each mirror bounce ([`render::path_agreement`]), which gives the image
 //! under every MAX_DIST at once, and the best D is read off ([`estimate_max_dist`]).
 
-use super::{Reference, pixel_difference};
-use crate::render::{self, Image, Kind, Options, Reach, VARIANTS, Variant, variant::Scope};
-use crate::scene::Scene;
+use super::{Reference, within};
+use crate::render::variant::{Row, Scope};
+use crate::render::{self, Image, Kind, Options, Reach, VARIANTS, Variant};
+use crate::scene::{Material, Object, Pattern, Scene};
+use crate::shapes::Shape;
 use serde::Serialize;
 
 /// The longest MAX_DIST `--diagnose` considers: 30 times the course's 32.
@@ -122,7 +124,7 @@ pub fn diagnose_and_focus(
     levels: u8,
 ) -> (Vec<Diagnosis>, Option<Focus>) {
     // Which pixels differ, a bit each (not a list of them all).
-    let (mask, count) = super::differing(&rendered.image, student, levels, |_, _, _| {});
+    let (mask, count) = super::differing(&rendered.image, student, levels, |_| {});
     with_mask(scene, options, rendered, student, levels, (&mask, count))
 }
 
@@ -144,7 +146,7 @@ pub(super) fn with_mask(
     if before >= 1.0 {
         return (Vec::new(), None);
     }
-    let agrees = |i: usize, bytes: [u8; 3]| pixel_difference(bytes, student.pixels[i]) <= levels;
+    let agrees = |i: usize, bytes: [u8; 3]| within(bytes, student.pixels[i], levels);
     // The samples, every n-th differing and agreeing pixel. Each sample: its differing
     // pixels, then its agreeing ones, and where they start.
     let samples = SAMPLE.map(|n| {
@@ -193,6 +195,9 @@ pub(super) fn with_mask(
             + agreeing as f64 * share(kept, sample_a.len());
         Some((after / total, fixed.first().copied()))
     };
+    // Which pixels agree with no byte rule, with round-bytes and with scale-256, where
+    // nothing is traced again: computed once each, when a candidate first needs it.
+    let untouched: [std::cell::OnceCell<Agreeing>; 3] = Default::default();
     // The exact agreement: every pixel the candidate can change traced again (the whole
     // image when that may be any).
     let exact = |variants: &[Variant]| -> Option<f64> {
@@ -200,7 +205,19 @@ pub(super) fn with_mask(
             .iter()
             .try_fold(*options, |o, &v| o.with_variant(v).ok())?;
         let agreeing = match reach(variants) {
-            Some(reach) => count_agreeing(scene, &options, (reach, rendered), student, levels),
+            Some(reach) => {
+                let rule = reach.byte_rule();
+                let untouched = untouched[rule_slot(rule)].get_or_init(|| {
+                    Agreeing::under(rule, rendered, student, levels, (mask, differing))
+                });
+                count_agreeing(
+                    scene,
+                    &options,
+                    (reach, rendered),
+                    (student, levels),
+                    untouched,
+                )
+            }
             None => {
                 let image = render::render(scene, &options, |_| {});
                 (image.pixels.into_iter().enumerate())
@@ -223,6 +240,7 @@ pub(super) fn with_mask(
         .filter(|v| v.kernel() != Some(options.kernel))
         .collect();
     candidates.extend(scoped(scene, &paths));
+    candidates.retain(|v| may_change(scene, options, v));
     let mut first_round: Vec<(Vec<Variant>, f64)> = (candidates.iter())
         .filter_map(|&v| Some((vec![v], estimate_on(0, &[v])?.0)))
         .filter(|(_, agreement)| *agreement > before)
@@ -352,37 +370,87 @@ fn reached(
     }
 }
 
+/// The pixels of the reference that agree with the student's image within the tolerance
+/// when a byte rule (or none) alone applies (pixel i: bit i % 64 of word i / 64), and how
+/// many: what every candidate with that byte rule keeps where it traces nothing.
+struct Agreeing {
+    mask: Vec<u64>,
+    count: usize,
+}
+
+impl Agreeing {
+    /// Under `rule`, from the reference's bytes and the steps its paths hold; `differing`
+    /// is the reference's own mask of differing pixels, the answer for no rule.
+    fn under(
+        rule: Option<Kind>,
+        rendered: &Reference,
+        student: &Image,
+        levels: u8,
+        (differing, count): (&[u64], usize),
+    ) -> Agreeing {
+        let pixels = student.pixels.len();
+        if rule.is_none() {
+            let mask = differing.iter().map(|&word| !word).collect();
+            return Agreeing {
+                mask,
+                count: pixels - count,
+            };
+        }
+        let steps = render::Steps::of(rule);
+        let reference = (rendered.paths.chunks(64)).zip(rendered.image.pixels.chunks(64));
+        let mut mask = Vec::with_capacity(pixels.div_ceil(64));
+        let mut count = 0;
+        for ((paths, bytes), theirs) in reference.zip(student.pixels.chunks(64)) {
+            let mut word = 0u64;
+            for (k, ((&paths, &bytes), &theirs)) in paths.iter().zip(bytes).zip(theirs).enumerate()
+            {
+                word |= u64::from(within(steps.apply(paths, bytes), theirs, levels)) << k;
+            }
+            count += word.count_ones() as usize;
+            mask.push(word);
+        }
+        Agreeing { mask, count }
+    }
+
+    fn at(&self, i: usize) -> bool {
+        self.mask[i / 64] >> (i % 64) & 1 == 1
+    }
+}
+
+/// The place of a byte rule's [`Agreeing`] among the three: none, round-bytes, scale-256.
+fn rule_slot(rule: Option<Kind>) -> usize {
+    match rule {
+        Some(Kind::RoundBytes) => 1,
+        Some(Kind::Scale256) => 2,
+        _ => 0,
+    }
+}
+
 /// How many pixels of the image under `options` agree with `student` within `levels`,
 /// for a candidate that changes only what `reach` touches: those pixels traced again, the
-/// others the reference's (stepped under a byte rule). One pass over the reference counts
-/// the pixels it does not touch and picks those it does.
+/// others the reference's, which agree where `untouched` (the agreement under the
+/// candidate's byte rule) says.
 fn count_agreeing(
     scene: &Scene,
     options: &Options,
     (reach, rendered): (Reach, &Reference),
-    student: &Image,
-    levels: u8,
+    (student, levels): (&Image, u8),
+    untouched: &Agreeing,
 ) -> usize {
-    let agrees = |bytes: [u8; 3], theirs: [u8; 3]| pixel_difference(bytes, theirs) <= levels;
-    let reference = rendered.paths.iter().zip(&rendered.image.pixels);
-    let mut traced = Vec::new();
-    let mut count = 0;
-    for (i, ((&paths, &bytes), &theirs)) in reference.zip(&student.pixels).enumerate() {
-        match reach.touches(paths) {
-            true => traced.push(i),
-            false => count += usize::from(agrees(reach.untouched(paths, bytes), theirs)),
-        }
+    if !reach.traces() {
+        return untouched.count;
     }
-    if !traced.is_empty() {
-        let bytes = render::render_pixels(scene, options, &traced);
-        let theirs = traced.iter().map(|&i| student.pixels[i]);
-        count += bytes
-            .into_iter()
-            .zip(theirs)
-            .filter(|&(b, t)| agrees(b, t))
-            .count();
-    }
-    count
+    let paths = rendered.paths.iter().enumerate();
+    let traced: Vec<usize> = paths
+        .filter(|&(_, &p)| reach.touches(p))
+        .map(|(i, _)| i)
+        .collect();
+    let kept = untouched.count - traced.iter().filter(|&&i| untouched.at(i)).count();
+    let bytes = render::render_pixels(scene, options, &traced);
+    let theirs = traced.iter().map(|&i| student.pixels[i]);
+    kept + (bytes.into_iter().zip(theirs))
+        .filter(|&(b, t)| within(b, t, levels))
+        .count()
 }
 
 /// The pixels whose bit in `mask` is `set` (of the first `pixels`), the first and then
@@ -422,6 +490,51 @@ fn subject(scene: &Scene, variants: &[Variant]) -> Option<String> {
     Some(format!("{kind} (line {line})"))
 }
 
+/// Whether `variant` can change a pixel of the scene's image under `options`: only where
+/// the rule it replaces is consulted. The lights' rules need a light that the stage
+/// lights, the mirror's an object that reflects (the one it is scoped to, or any) under a
+/// stage that reflects, a normal's either (or the image of the normals); a variant of
+/// some kinds of object (cones, tiled planes, ...) an object of those kinds. Those that
+/// cannot are not tried: their agreement is the reference's.
+fn may_change(scene: &Scene, options: &Options, variant: &Variant) -> bool {
+    let traced = options.show.is_none();
+    let lit = traced && options.stage.lights() && !scene.lights.is_empty();
+    let object = (variant.line).and_then(|line| scene.objects.iter().find(|o| o.line == line));
+    let mirrors = traced
+        && options.stage.reflects()
+        && match object {
+            Some(object) => reflects(object),
+            None => scene.objects.iter().any(reflects),
+        };
+    match variant.kind {
+        Kind::SquareFalloff
+        | Kind::NoShadows
+        | Kind::Unlit
+        | Kind::NoShadow
+        | Kind::NoLight
+        | Kind::Unshadowed => lit,
+        Kind::OneBounce | Kind::NoMirror => mirrors,
+        Kind::ShadowEpsilon => lit || mirrors,
+        Kind::FacingNormals | Kind::FlippedNormal => {
+            lit || mirrors || options.show == Some(render::Show::Normals)
+        }
+        _ => match (variant.row().scope, object) {
+            (Scope::ImageOrObject(kinds), None) => {
+                scene.objects.iter().any(|o| kinds.admit(&o.shape))
+            }
+            _ => true,
+        },
+    }
+}
+
+/// Whether a mirror ray can leave `object`: its specular, or a tiled plane's other
+/// tiles', is not zero (spec §4.5).
+fn reflects(object: &Object) -> bool {
+    let mirror = |m: &Material| m.specular != glam::DVec3::ZERO;
+    mirror(&object.material)
+        || matches!(&object.pattern, Pattern::Tiles { background, .. } if mirror(background))
+}
+
 /// The edits of one record on the objects and the lights most involved in the sampled
 /// differing pixels' paths, most involved first.
 fn scoped(scene: &Scene, paths: &[render::Involved]) -> Vec<Variant> {
@@ -447,23 +560,29 @@ fn scoped(scene: &Scene, paths: &[render::Involved]) -> Vec<Variant> {
         order.truncate(SUBJECTS);
         order
     };
-    let rows = |light: bool| {
-        VARIANTS.iter().filter(move |row| match row.scope {
-            Scope::ImageOrObject(_) | Scope::Object(_) => !light,
-            Scope::ImageOrLight | Scope::Light => light,
-            Scope::Image => false,
-        })
-    };
     let mut edits = Vec::new();
     for object in most(&objects) {
-        let line = scene.objects[object].line;
-        edits.extend(rows(false).map(|row| Variant::of(row.kind).at(line)));
+        let object = &scene.objects[object];
+        edits.extend(edits_of(Some(&object.shape), object.line));
     }
     for light in most(&lights) {
-        let line = scene.lights[light].line;
-        edits.extend(rows(true).map(|row| Variant::of(row.kind).at(line)));
+        edits.extend(edits_of(None, scene.lights[light].line));
     }
     edits
+}
+
+/// The edits of the record on `line`: an object of this shape (cone-scale only for a
+/// cone, ...), or a light (`None`).
+fn edits_of(shape: Option<&Shape>, line: usize) -> impl Iterator<Item = Variant> + '_ {
+    let fits = move |row: &&Row| match (row.scope, shape) {
+        (Scope::ImageOrObject(kinds) | Scope::Object(kinds), Some(shape)) => kinds.admit(shape),
+        (Scope::ImageOrLight | Scope::Light, None) => true,
+        _ => false,
+    };
+    VARIANTS
+        .iter()
+        .filter(fits)
+        .map(move |row| Variant::of(row.kind).at(line))
 }
 
 /// The indices `of` yields, each once: a path's objects or lights, a few.
@@ -524,12 +643,7 @@ pub fn estimate_max_dist(
 ) -> Option<(f64, [f64; 2], f64)> {
     // MAX_DIST cuts mirror paths only (spec §4.2 step 1 never stops the camera ray): a
     // scene without a mirror has one image under every D.
-    let mirror = |m: &crate::scene::Material| m.specular != glam::DVec3::ZERO;
-    let reflects = scene.objects.iter().any(|o| {
-        mirror(&o.material)
-            || matches!(&o.pattern, crate::scene::Pattern::Tiles { background, .. } if mirror(background))
-    });
-    if !reflects {
+    if !scene.objects.iter().any(reflects) {
         return None;
     }
     let probe = Options {
@@ -537,7 +651,7 @@ pub fn estimate_max_dist(
         ..*options
     };
     let (mut state, changes) = render::path_agreement(scene, &probe, |pixel, bytes| {
-        pixel_difference(bytes, student.pixels[pixel]) <= levels
+        within(bytes, student.pixels[pixel], levels)
     });
     let mut agreeing = state.iter().filter(|&&s| s).count();
     // Agreement on each interval [start, next start) of D.
@@ -592,6 +706,112 @@ pub fn roundest(low: f64, high: f64) -> (f64, f64) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::path::Path;
+
+    /// Every example scene, and the course's where they are beside the project.
+    fn scenes() -> Vec<(String, Scene)> {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let mut paths = Vec::new();
+        for dir in [root.join("examples"), root.join("../shared/course-scenes")] {
+            let Ok(entries) = std::fs::read_dir(dir) else {
+                continue;
+            };
+            paths.extend(entries.flatten().map(|e| e.path()));
+        }
+        paths.retain(|p| p.extension().is_some_and(|e| e == "txt"));
+        paths.sort();
+        // The examples' textures are named from the project's folder, where tests run.
+        let load = |path: &Path| {
+            let text = std::fs::read_to_string(path).unwrap();
+            (path.display().to_string(), crate::load(&text).unwrap())
+        };
+        let scenes: Vec<_> = paths.iter().map(|p| load(p)).collect();
+        assert!(scenes.len() >= 20, "the examples are found");
+        scenes
+    }
+
+    #[test]
+    fn a_variant_not_tried_renders_the_reference_s_image() {
+        // What `may_change` rules out must change no pixel: checked by rendering, on
+        // every scene, for every variant and every edit of every record, at the stage
+        // that draws everything and at the ambient one.
+        for (name, scene) in scenes() {
+            let mut variants: Vec<Variant> = Variant::tried().collect();
+            for object in &scene.objects {
+                variants.extend(edits_of(Some(&object.shape), object.line));
+            }
+            for light in &scene.lights {
+                variants.extend(edits_of(None, light.line));
+            }
+            for stage in [render::Stage::Full, render::Stage::Ambient] {
+                let options = Options {
+                    stage,
+                    ..Options::new(40, 30)
+                };
+                let reference = render::render(&scene, &options, |_| {});
+                for variant in variants.iter().filter(|v| !may_change(&scene, &options, v)) {
+                    let Ok(with) = options.with_variant(*variant) else {
+                        continue;
+                    };
+                    let image = render::render(&scene, &with, |_| {});
+                    assert_eq!(image, reference, "{name} {stage:?} {}", variant.id());
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn an_exact_agreement_is_the_whole_render_s() {
+        // A student's image with two mistakes; each candidate's exact agreement (traced
+        // again where it can change, the reference's bytes elsewhere) against the count
+        // over the whole image rendered with it.
+        for (name, scene) in scenes().into_iter().filter(|(_, s)| !s.objects.is_empty()) {
+            let options = Options::new(48, 36);
+            let first = scene.objects[0].line;
+            let mistakes = [
+                Variant::parse(&format!("hidden@{first}")).unwrap(),
+                Variant::of(Kind::Scale256),
+            ];
+            let student_options = mistakes
+                .iter()
+                .fold(options, |o, &v| o.with_variant(v).unwrap());
+            let student = render::render(&scene, &student_options, |_| {});
+            let rendered = crate::compare::reference_at(&scene, &options, 1e-7, true);
+            let (mask, count) = super::super::differing(&rendered.image, &student, 0, |_| {});
+            let untouched: [std::cell::OnceCell<Agreeing>; 3] = Default::default();
+            let mut candidates = vec![
+                vec![Variant::of(Kind::RoundBytes)],
+                vec![Variant::of(Kind::Scale256)],
+            ];
+            for edit in edits_of(Some(&scene.objects[0].shape), first) {
+                candidates.push(vec![edit]);
+                candidates.push(vec![Variant::of(Kind::Scale256), edit]);
+                candidates.push(vec![Variant::of(Kind::RoundBytes), edit]);
+            }
+            for variants in candidates {
+                let Some(with) = variants
+                    .iter()
+                    .try_fold(options, |o, &v| o.with_variant(v).ok())
+                else {
+                    continue;
+                };
+                let Some(reach) = Reach::of(&scene, &[], &variants) else {
+                    continue;
+                };
+                let rule = reach.byte_rule();
+                let slot = &untouched[rule_slot(rule)];
+                let under = slot
+                    .get_or_init(|| Agreeing::under(rule, &rendered, &student, 0, (&mask, count)));
+                let exact = count_agreeing(&scene, &with, (reach, &rendered), (&student, 0), under);
+                let whole = render::render(&scene, &with, |_| {});
+                let expected = (whole.pixels.iter().zip(&student.pixels))
+                    .filter(|(a, b)| a == b)
+                    .count();
+                let ids: Vec<String> = variants.iter().map(|v| v.id()).collect();
+                assert_eq!(exact, expected, "{name} {}", ids.join(","));
+            }
+        }
+    }
 
     #[test]
     fn every_nth_picks_as_step_by_does() {

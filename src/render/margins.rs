@@ -52,6 +52,32 @@ pub(crate) struct Sizes<'a> {
     /// How far past their answer the queries test objects ([`Recorder::reach`]); margins
     /// beyond it are not kept.
     reach: f64,
+    /// The closest hits' decisions whose margins clear the reach.
+    cutoff: Cutoff,
+}
+
+/// Which margins a query can leave out: those at or above a bound, told from the
+/// decision's quantity and size without dividing one by the other.
+#[derive(Clone, Copy)]
+struct Cutoff(f64);
+
+impl Cutoff {
+    /// Every margin counts.
+    const NONE: Cutoff = Cutoff(f64::INFINITY);
+
+    /// Margins of `reach` or more. The bound is raised by 4 ulps, so that quantity >=
+    /// bound × size (rounded twice) implies quantity / size >= reach, rounded.
+    fn at(reach: f64) -> Cutoff {
+        Cutoff(reach * (1.0 + 4.0 * f64::EPSILON))
+    }
+
+    /// Whether the margin `quantity / size` is surely at or above the bound; never where
+    /// the margin would be NaN, which counts as unsure: a NaN fails the comparison, and
+    /// 0 / 0 and ∞ / ∞ have quantity = size.
+    #[inline(always)]
+    fn clears(self, quantity: f64, size: f64) -> bool {
+        quantity >= self.0 * size && quantity != size
+    }
 }
 
 impl<'a> Sizes<'a> {
@@ -62,12 +88,14 @@ impl<'a> Sizes<'a> {
         precision: f64,
     ) -> Sizes<'a> {
         let facts = scene.objects.iter().map(|o| Facts::of(&o.shape)).collect();
+        let reach = (64.0 * precision).min(MARGIN_REACH);
         Sizes {
             scene,
             facts,
             max_dist,
             screen,
-            reach: (64.0 * precision).min(MARGIN_REACH),
+            reach,
+            cutoff: Cutoff::at(reach),
         }
     }
 }
@@ -166,9 +194,11 @@ impl<'s, 'a, const PATHS: bool> Margins<'s, 'a, PATHS> {
 
     /// Takes a margin of a decision that chose what the pixel shows.
     fn take(&mut self, margin: f64) {
-        // A NaN margin (a NaN decision) is as unsure as can be.
+        // A NaN margin (a NaN decision) is as unsure as can be. Over a κ of 1 (every
+        // path without a root) the margin is itself: no division.
         self.least = match margin.is_nan() {
             true => 0.0,
+            false if self.kappa == 1.0 => self.least.min(margin),
             false => self.least.min(margin / self.kappa),
         };
     }
@@ -188,14 +218,21 @@ impl<'s, 'a, const PATHS: bool> Margins<'s, 'a, PATHS> {
         self.base + t.abs() + self.sizes.facts[object].anchor
     }
 
-    /// The smallest margin of `object`'s decisions in `notes`, and the t where it lies.
+    /// The smallest margin of `object`'s decisions in `notes`, and the t where it lies;
+    /// margins of `cutoff` or more may be left out (infinite), their divisions not done:
+    /// a camera ray keeps only those below the reach.
     #[inline]
-    fn notes_margin(&self, object: usize, notes: &[HitNote]) -> (f64, f64) {
+    fn notes_margin(&self, object: usize, notes: &[HitNote], cutoff: Cutoff) -> (f64, f64) {
         let facts = &self.sizes.facts[object];
         let size = |t: f64| self.size(object, t);
         let mut least = (f64::INFINITY, f64::INFINITY);
         let mut plane_t = f64::INFINITY;
-        let mut take = |margin: f64, t: f64| {
+        // The margin `quantity / size` of a decision at `t`.
+        let mut take = |quantity: f64, size: f64, t: f64| {
+            if cutoff.clears(quantity, size) {
+                return;
+            }
+            let margin = quantity / size;
             if margin.is_nan() || margin < least.0 {
                 least = (margin, t);
             }
@@ -204,23 +241,23 @@ impl<'s, 'a, const PATHS: bool> Margins<'s, 'a, PATHS> {
             match *note {
                 HitNote::Discriminant {
                     relative, vertex, ..
-                } => take(relative, vertex),
+                } => take(relative, 1.0, vertex),
                 HitNote::Nearer { t: Some(t) } | HitNote::QuadricRoot { t, .. } => {
-                    take(t.abs() / size(t), t)
+                    take(t.abs(), size(t), t)
                 }
                 HitNote::Root { t, y, .. } => {
                     let size = size(t);
-                    take(t.abs() / size, t);
+                    take(t.abs(), size, t);
                     if let Some((low, high)) = facts.bounds {
-                        take((y - low).abs().min((y - high).abs()) / size, t);
+                        take((y - low).abs().min((y - high).abs()), size, t);
                     }
                 }
                 HitNote::Plane { t, z, .. } => {
                     plane_t = t;
                     let size = size(t);
-                    take(t.abs() / size, t);
+                    take(t.abs(), size, t);
                     if facts.z_rule {
-                        take(z.abs() / size, t);
+                        take(z.abs(), size, t);
                     }
                 }
                 HitNote::Rectangle { q, .. } => {
@@ -228,7 +265,7 @@ impl<'s, 'a, const PATHS: bool> Margins<'s, 'a, PATHS> {
                         let (w, h) = (rectangle.x, rectangle.y);
                         let edge =
                             (q.x.abs().min((q.x - w).abs())).min(q.y.abs().min((q.y - h).abs()));
-                        take(edge / size(plane_t), plane_t);
+                        take(edge, size(plane_t), plane_t);
                     }
                 }
                 HitNote::Nearer { t: None } | HitNote::NoRealRoot | HitNote::Parallel => {}
@@ -240,7 +277,13 @@ impl<'s, 'a, const PATHS: bool> Margins<'s, 'a, PATHS> {
     /// One object's test along the current ray.
     #[inline(always)]
     fn test(&mut self, object: usize, t: Option<f64>, notes: &[HitNote]) {
-        let (margin, at) = self.notes_margin(object, notes);
+        // A shadow ray's decisions count whatever their margins; a closest hit's only
+        // below the reach.
+        let cutoff = match self.shadow {
+            Some(_) => Cutoff::NONE,
+            None => self.sizes.cutoff,
+        };
+        let (margin, at) = self.notes_margin(object, notes, cutoff);
         let hit = t.filter(|&t| t > 0.0);
         if let Some(dist) = self.shadow {
             match hit {
@@ -302,7 +345,10 @@ impl<'s, 'a, const PATHS: bool> Margins<'s, 'a, PATHS> {
         // of the two nearest hits but where a variant's ε or a box refused a nearer one;
         // then its condition is not known and not taken.
         let won = |entry: &Option<(usize, f64, f64)>| entry.filter(|e| Some(e.0) == winner);
-        if let Some((_, t, spread)) = self.nearest.iter().find_map(won) {
+        // A root found without a spread (a plane's) leaves κ as it was.
+        if let Some((_, t, spread)) = self.nearest.iter().find_map(won)
+            && spread != 0.0
+        {
             self.kappa = self.kappa.max(spread / t.abs());
         }
     }
@@ -478,6 +524,33 @@ mod tests {
         let mut rec = Margins::<false>::new(&sizes);
         tracer.pixel::<Accurate>(ray, tracer.objects.tile(1, 1), &mut rec);
         rec.least
+    }
+
+    #[test]
+    fn a_margin_cleared_without_dividing_is_at_or_above_the_bound() {
+        // Quantities a few ulps either side of reach × size, and sizes across the
+        // exponent range: where `clears` says so, the divided margin is at or above the
+        // reach; and a margin that would be NaN is never cleared.
+        for reach in [64.0 * 1.9073486328125e-6, 64.0 * f64::EPSILON, 1e-2] {
+            let cutoff = Cutoff::at(reach);
+            for size in [1e-300, 3e-7, 0.7, 1.0, 3.0, 12345.678, 1e200] {
+                let mut quantity = reach * size;
+                for _ in 0..12 {
+                    quantity = f64::from_bits(quantity.to_bits() - 1);
+                }
+                for _ in 0..24 {
+                    if cutoff.clears(quantity, size) {
+                        assert!(quantity / size >= reach, "{quantity:e} / {size:e}");
+                    }
+                    quantity = f64::from_bits(quantity.to_bits() + 1);
+                }
+                assert!(cutoff.clears(reach * size * 2.0, size));
+            }
+            for (quantity, size) in [(0.0, 0.0), (f64::INFINITY, f64::INFINITY), (f64::NAN, 1.0)] {
+                assert!(!cutoff.clears(quantity, size));
+                assert!(!Cutoff::NONE.clears(quantity, size));
+            }
+        }
     }
 
     #[test]

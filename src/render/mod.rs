@@ -23,6 +23,7 @@ mod tracer;
 pub mod variant;
 
 pub use choices::{Choices, by_name, size_problem};
+pub(crate) use reach::Steps;
 pub use reach::{Paths, Reach};
 pub use record::{Event, LightStep, Skip, Stats};
 pub use shading::PatternNote;

@@ -94,12 +94,34 @@ impl Paths {
     /// The bytes of this pixel under the byte rule `rule` (round-bytes or scale-256),
     /// from the reference's `bytes`; the reference's for any other.
     pub fn bytes(self, rule: Option<Kind>, bytes: [u8; 3]) -> [u8; 3] {
+        Steps::of(rule).apply(self, bytes)
+    }
+}
+
+/// Where a byte rule's steps lie in [`Paths`]: the first of their three bits, and a mask
+/// that keeps them (none for the reference's own rule). Found once for a pass over the
+/// pixels, it steps each without a branch.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Steps {
+    first: u32,
+    mask: u64,
+}
+
+impl Steps {
+    /// The steps of `rule` (round-bytes or scale-256); none for any other.
+    pub(crate) fn of(rule: Option<Kind>) -> Steps {
         let first = match rule {
             Some(Kind::RoundBytes) => ROUND,
             Some(Kind::Scale256) => SCALE_256,
-            _ => return bytes,
+            _ => return Steps { first: 0, mask: 0 },
         };
-        let steps = self.0 >> first;
+        Steps { first, mask: 0b111 }
+    }
+
+    /// `bytes` stepped as `paths` holds under this rule.
+    #[inline]
+    pub(crate) fn apply(self, paths: Paths, bytes: [u8; 3]) -> [u8; 3] {
+        let steps = paths.0 >> self.first & self.mask;
         let step = |c: u32| (steps >> c & 1) as u8;
         [bytes[0] + step(0), bytes[1] + step(1), bytes[2] + step(2)]
     }
@@ -166,6 +188,12 @@ impl Reach {
     /// Whether a pixel whose path is `paths` may change: it must be traced again.
     pub fn touches(self, paths: Paths) -> bool {
         paths.0 & self.records != 0
+    }
+
+    /// The byte rule among the variants, if any: the bytes of the pixels it does not touch
+    /// are the reference's stepped under it.
+    pub fn byte_rule(self) -> Option<Kind> {
+        self.bytes
     }
 
     /// The bytes of a pixel it does not touch, from the reference's `bytes`.

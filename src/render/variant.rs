@@ -53,7 +53,7 @@ pub enum Kinds {
 
 impl Kinds {
     /// Whether `shape` is of these kinds.
-    fn admit(self, shape: &Shape) -> bool {
+    pub(crate) fn admit(self, shape: &Shape) -> bool {
         match self {
             Kinds::Any => true,
             Kinds::Cones => matches!(shape, Shape::Cone(_)),
@@ -618,6 +618,10 @@ pub fn check_scopes(options: &Options, scene: &Scene) -> Result<(), String> {
     Ok(())
 }
 
+/// 2^52 + 2^51: a number x with |x| < 2^51, plus this, minus this, is the integer nearest
+/// to x (IEEE arithmetic rounds to nearest).
+const ROUNDER: f64 = 6_755_399_441_055_744.0;
+
 /// How a channel becomes a byte (spec §4.7 or a variant of it).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub(crate) enum Bytes {
@@ -684,9 +688,11 @@ impl Bytes {
             // 0 up to the first step.
             return Some((-x, scaled));
         }
-        // The steps on either side (a cast truncates, cheaper than a rounding call).
-        let below = (x as i64) as f64;
-        Some(((x - below).min(below + 1.0 - x), scaled))
+        // The distance to the nearer of the steps on either side: to the nearest integer
+        // k, found by adding and taking away 2^52 + 2^51 (exact below 2^51; no cast, no
+        // rounding call), |x - k| exact.
+        let nearest = (x + ROUNDER) - ROUNDER;
+        Some(((x - nearest).abs(), scaled))
     }
 }
 
@@ -1040,6 +1046,45 @@ impl Rulebook for &Rules {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_step_s_distance_is_that_to_the_floor_or_the_ceiling() {
+        // Against the distances to floor(x) and floor(x) + 1, the nearer one, on values
+        // at and a few ulps around every step and every half step, and between them.
+        let mut xs = Vec::new();
+        for k in 0..256 {
+            for base in [k as f64, k as f64 + 0.5, k as f64 + 0.25, k as f64 + 0.999] {
+                let mut x = base;
+                for _ in 0..4 {
+                    xs.extend([x, base - (x - base)]);
+                    x = f64::from_bits(x.to_bits() + 1);
+                }
+            }
+        }
+        xs.extend([1e-300, 5e-324, 0.5, 0.49999999999999994]);
+        for rule in [Bytes::Truncate, Bytes::Round, Bytes::Scale256] {
+            let (scale, offset) = match rule {
+                Bytes::Round => (255.0, 0.5),
+                Bytes::Truncate => (255.0, 0.0),
+                Bytes::Scale256 => (256.0, 0.0),
+            };
+            for &x in xs.iter().filter(|&&x| x > 0.0 && x < 254.5) {
+                let channel = (x + offset) / scale;
+                let scaled = channel * scale;
+                let v = scaled - offset;
+                if channel <= 0.0 || v < 0.0 || scaled >= 254.5 {
+                    continue;
+                }
+                let floor = v.floor();
+                let expected = (v - floor).min(floor + 1.0 - v);
+                assert_eq!(
+                    rule.step_distance(channel),
+                    Some((expected, scaled)),
+                    "{rule:?} {x:e}"
+                );
+            }
+        }
+    }
 
     #[test]
     fn every_id_parses_back_to_its_variant() {
