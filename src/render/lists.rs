@@ -71,6 +71,28 @@ impl Builder {
 }
 
 impl Lists {
+    /// The lists of `parts`' cells, the first part's first: the grid of a whole image
+    /// from the grids of its bands.
+    pub(crate) fn joined(mut parts: Vec<Lists>) -> Lists {
+        if parts.len() == 1 {
+            return parts.remove(0);
+        }
+        let mut joined = Lists {
+            starts: vec![0],
+            kept: Vec::new(),
+            objects: Vec::new(),
+        };
+        for part in parts {
+            let offset = joined.objects.len() as u32;
+            joined
+                .starts
+                .extend(part.starts[1..].iter().map(|&s| s + offset));
+            joined.kept.extend(part.kept);
+            joined.objects.extend(part.objects);
+        }
+        joined
+    }
+
     /// Cell `cell`'s objects, or `None` when it keeps no list.
     #[inline]
     pub(crate) fn get(&self, cell: usize) -> Option<&[u32]> {

@@ -17,6 +17,7 @@ mod reach;
 mod record;
 mod shading;
 mod stage;
+mod threads;
 mod tiles;
 pub(crate) mod trace;
 mod tracer;
@@ -43,6 +44,7 @@ use objects::From;
 use record::Recorder;
 use std::borrow::Cow;
 use std::sync::atomic::{AtomicU64, Ordering};
+use threads::Threads;
 use tracer::Tracer;
 use variant::{AsWritten, Rulebook, Rules};
 
@@ -169,14 +171,16 @@ impl Camera {
 }
 
 /// What every entry point needs before its first ray: the scene as its variants change
-/// it, the rules they set, and the camera.
+/// it, the rules they set, the camera, and the threads.
 struct Setup<'a> {
     scene: Cow<'a, Scene>,
     rules: Rules,
     camera: Camera,
+    threads: Threads,
 }
 
 impl<'a> Setup<'a> {
+    /// For rays traced on the calling thread (a pixel, a sample of pixels).
     fn new(scene: &'a Scene, options: &Options) -> Setup<'a> {
         let scene = Rules::scene(options, scene);
         let rules = Rules::new(options, &scene);
@@ -185,6 +189,15 @@ impl<'a> Setup<'a> {
             scene,
             rules,
             camera,
+            threads: Threads::one(),
+        }
+    }
+
+    /// For a whole image: on the threads `options` asks for, which build the tiles too.
+    fn for_image(scene: &'a Scene, options: &Options) -> Setup<'a> {
+        Setup {
+            threads: Threads::of(options),
+            ..Setup::new(scene, options)
         }
     }
 
@@ -195,7 +208,8 @@ impl<'a> Setup<'a> {
 
     /// The tracer, reading the rules from `book`.
     fn tracer_with<B: Rulebook>(&self, book: B, options: &Options) -> Tracer<'_, B> {
-        Tracer::new(&self.scene, book, options, Some(&self.camera), None)
+        let camera = Some((&self.camera, &self.threads));
+        Tracer::new(&self.scene, book, options, camera, None)
     }
 
     /// The output row that holds pixel row `y` and the reverse: H - 1 - y, or y upside
@@ -211,7 +225,7 @@ impl<'a> Setup<'a> {
 
 /// Renders the scene; `progress` is called with the number of rows done after each row.
 pub fn render(scene: &Scene, options: &Options, mut progress: impl FnMut(usize)) -> Image {
-    let setup = Setup::new(scene, options);
+    let setup = Setup::for_image(scene, options);
     // The rules as written are constants to the tracer (`variant::Rulebook`).
     let pixels = match setup.rules.as_written() {
         true => pixels_of(
@@ -269,7 +283,7 @@ fn pixel_bytes<K: Kernel, B: Rulebook>(
 /// rendering it once more with a recorder that counts: for the benchmarks' rays per
 /// second.
 pub fn count_rays(scene: &Scene, options: &Options) -> Stats {
-    let setup = Setup::new(scene, options);
+    let setup = Setup::for_image(scene, options);
     let tracer = setup.tracer(options);
     let count = |x: usize, y: usize| -> Stats {
         let mut stats = Stats::default();
@@ -296,7 +310,7 @@ pub fn acceleration(scene: &Scene, options: &Options) -> (bool, bool) {
 }
 
 /// `per_pixel(x, y)` of every pixel, in output order (rows top to bottom, spec §4.1), on
-/// `options.threads` threads; `progress` is told the rows done.
+/// the setup's threads; `progress` is told the rows done.
 fn each_pixel<T: Send + Clone + Default>(
     setup: &Setup,
     options: &Options,
@@ -310,59 +324,50 @@ fn each_pixel<T: Send + Clone + Default>(
             *pixel = per_pixel(x, y);
         }
     };
-    in_bands(options, &mut pixels, render_row, progress);
+    in_bands(
+        &setup.threads,
+        options.width,
+        &mut pixels,
+        render_row,
+        progress,
+    );
     pixels
 }
 
-/// Runs `render_row(row, out)` for every output row of `pixels` on `options.threads`
-/// threads, telling `progress` the rows done.
+/// Runs `render_row(row, out)` for every output row of `pixels` (`width` wide) on
+/// `threads`, telling `progress` the rows done.
 fn in_bands<T: Send>(
-    options: &Options,
+    threads: &Threads,
+    width: usize,
     pixels: &mut [T],
     render_row: impl Fn(usize, &mut [T]) + Sync,
     progress: &mut impl FnMut(usize),
 ) {
-    let width = options.width;
     #[cfg(feature = "threads")]
-    if options.threads != 1 && on_a_pool(options, pixels, &render_row, progress) {
+    if let Some(pool) = threads.pool() {
+        use rayon::prelude::*;
+        let height = pixels.len() / width.max(1);
+        // Bands of rows, each spread over the pool, so that progress is reported from
+        // this thread; at least a 32nd of the image each, for each band waits for its
+        // slowest row (a04 at 1600x1200 on two threads: 89 ms with bands of 8 rows, 77
+        // ms with 37). Every pixel is computed exactly as on one thread; only the order
+        // differs, so the bytes are the same.
+        let band = (4 * pool.current_num_threads()).max(height / 32);
+        for (index, chunk) in pixels.chunks_mut(band * width).enumerate() {
+            let first = index * band;
+            pool.install(|| {
+                (chunk.par_chunks_mut(width).enumerate())
+                    .for_each(|(row, out)| render_row(first + row, out));
+            });
+            progress((first + band).min(height));
+        }
         return;
     }
+    let _ = threads;
     for (row, out) in pixels.chunks_mut(width).enumerate() {
         render_row(row, out);
         progress(row + 1);
     }
-}
-
-/// [`in_bands`] on a pool of `options.threads` threads; `false` when no pool can be
-/// started (then the caller renders on its own thread).
-#[cfg(feature = "threads")]
-fn on_a_pool<T: Send>(
-    options: &Options,
-    pixels: &mut [T],
-    render_row: &(impl Fn(usize, &mut [T]) + Sync),
-    progress: &mut impl FnMut(usize),
-) -> bool {
-    use rayon::prelude::*;
-    let (width, height) = (options.width, options.height);
-    let Ok(pool) = rayon::ThreadPoolBuilder::new()
-        .num_threads(options.threads.min(MAX_THREADS))
-        .build()
-    else {
-        return false;
-    };
-    // Bands of rows, each spread over the pool, so that progress is reported from this
-    // thread. Every pixel is computed exactly as on one thread; only the order differs,
-    // so the bytes are the same.
-    let band = 4 * pool.current_num_threads();
-    for (index, chunk) in pixels.chunks_mut(band * width).enumerate() {
-        let first = index * band;
-        pool.install(|| {
-            (chunk.par_chunks_mut(width).enumerate())
-                .for_each(|(row, out)| render_row(first + row, out));
-        });
-        progress((first + band).min(height));
-    }
-    true
 }
 
 /// The object a camera ray hits first, in 4 bytes (half of a reference pixel's
@@ -508,7 +513,7 @@ fn marked<const PATHS: bool>(
     precision: f64,
     slots: &[AtomicU64],
 ) -> Vec<Mark> {
-    let setup = Setup::new(scene, options);
+    let setup = Setup::for_image(scene, options);
     // As in `render`: the rules as written are constants to the tracer.
     match setup.rules.as_written() {
         true => margins_of::<PATHS, _>(
@@ -609,7 +614,7 @@ fn at_pixels<T>(
         *cell = true;
     }
     let cells = (indices.len() >= PIXELS_PER_LIST * count).then_some(cells);
-    let camera = cells.is_some().then_some(&setup.camera);
+    let camera = cells.is_some().then_some((&setup.camera, &setup.threads));
     let tracer = Tracer::new(
         &setup.scene,
         &setup.rules,
@@ -764,7 +769,7 @@ pub fn path_agreement(
             }
         }
     }
-    let setup = Setup::new(scene, options);
+    let setup = Setup::for_image(scene, options);
     let tracer = setup.tracer(options);
     let changes = std::sync::Mutex::new(Vec::new());
     let width = options.width;

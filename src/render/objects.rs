@@ -18,6 +18,7 @@
 
 use super::bvh::{Boxes, Bvh, beats};
 use super::record::{Event, LightStep, Recorder, Skip};
+use super::threads::Threads;
 use super::tiles::{Tile, Tiles};
 use super::variant::Rulebook;
 use super::{Camera, Options};
@@ -65,7 +66,7 @@ impl<'a, B: Rulebook> Objects<'a, B> {
         scene: &'a Scene,
         rules: B,
         options: &Options,
-        camera: Option<&Camera>,
+        camera: Option<(&Camera, &Threads)>,
         cells: Option<&[bool]>,
     ) -> Objects<'a, B> {
         let boxes = Boxes::for_kernel(scene, options.kernel);
@@ -73,9 +74,17 @@ impl<'a, B: Rulebook> Objects<'a, B> {
         let rays = options.width * options.height;
         let bvh = accelerate.then(|| Bvh::for_rays(&boxes, rays)).flatten();
         let hidden = |index: usize| rules.some_hidden() && rules.object(index).hidden();
-        let tiles = (camera.filter(|_| accelerate)).and_then(|camera| {
+        let tiles = (camera.filter(|_| accelerate)).and_then(|(camera, threads)| {
             let pixels = (&camera.xs[..], &camera.ys[..]);
-            Tiles::new(scene, &boxes, camera.viewpoint, pixels, hidden, cells)
+            Tiles::new(
+                scene,
+                &boxes,
+                camera.viewpoint,
+                pixels,
+                hidden,
+                cells,
+                threads,
+            )
         });
         Objects {
             scene,

@@ -22,6 +22,7 @@
 
 use super::bvh::Boxes;
 use super::lists::{Builder, Lists, MOST_OBJECTS};
+use super::threads::Threads;
 use crate::scene::Scene;
 use glam::{DVec2, DVec3};
 use std::ops::Range;
@@ -103,8 +104,9 @@ impl Tiles {
         boxes: &Boxes,
         eye: DVec3,
         (xs, ys): (&[f64], &[f64]),
-        hidden: impl Fn(usize) -> bool,
+        hidden: impl Fn(usize) -> bool + Sync,
         cells: Option<&[bool]>,
+        threads: &Threads,
     ) -> Option<Tiles> {
         if scene.objects.len() > xs.len() * ys.len() {
             return None;
@@ -132,15 +134,14 @@ impl Tiles {
             .filter_map(|(index, object)| Some((index, object.shape.plane()?)))
             .map(|(index, p)| (index, SeenPlane::new(p.normal, p.point, eye, (xs, ys))))
             .unzip();
-        let reaches: Vec<Reach> = (0..scene.objects.len())
-            .map(|index| match boxes.get(index) {
+        let reaches: Vec<Reach> =
+            threads.map(scene.objects.len(), |index| match boxes.get(index) {
                 Some((min, max)) => seen_through(eye, min, max, xs, ys, &seen),
                 None => match plane_objects.iter().position(|&i| i == index) {
                     Some(k) => Reach::Plane(k),
                     None => Reach::Everywhere,
                 },
-            })
-            .collect();
+            });
         let (across, down) = tiles_across(xs.len(), ys.len());
         let wanted = |tile: usize| cells.is_none_or(|cells| cells.get(tile) == Some(&true));
         // Tile (tx, ty) of a tile's index.
@@ -149,8 +150,8 @@ impl Tiles {
         // and of those the planes whose hits count at every pixel there: whatever lies
         // behind one of them cannot be the closest hit there. A hidden plane is passed
         // through.
-        let (ahead, occluders): (Vec<u32>, Vec<u32>) = (0..across * down)
-            .map(|tile| {
+        let (ahead, occluders): (Vec<u32>, Vec<u32>) = threads
+            .map(across * down, |tile| {
                 if !wanted(tile) {
                     return (0, 0);
                 }
@@ -166,6 +167,7 @@ impl Tiles {
                 }
                 (ahead, occluders)
             })
+            .into_iter()
             .unzip();
         let nearest: Vec<f64> = (0..scene.objects.len())
             .map(|index| {
@@ -176,47 +178,62 @@ impl Tiles {
             .collect();
         let mut order: Vec<usize> = (0..scene.objects.len()).collect();
         order.sort_by(|&i, &j| nearest[i].total_cmp(&nearest[j]).then(i.cmp(&j)));
-        let mut lists = Builder::new(across * down, wanted);
-        for index in order {
-            match &reaches[index] {
-                Reach::Nowhere => {}
-                Reach::Pixels(columns, rows, hidden_by) => {
-                    for ty in rows.start / TILE..rows.end.div_ceil(TILE) {
-                        for tx in columns.start / TILE..columns.end.div_ceil(TILE) {
-                            let tile = ty * across + tx;
-                            if occluders[tile] & *hidden_by == 0 {
-                                lists.add(tile, index);
+        // The lists of each band of tile rows, built apart (on the threads) and joined:
+        // every object in `order` added to the tiles of the band it reaches, so that a
+        // tile's list is the same whatever the bands.
+        let rows_per_band = match threads.count() {
+            1 => down.max(1),
+            n => down.div_ceil(4 * n).max(1),
+        };
+        let bands = threads.map(down.div_ceil(rows_per_band), |band| {
+            let rows = band * rows_per_band..((band + 1) * rows_per_band).min(down);
+            let first = rows.start * across;
+            let mut lists = Builder::new(rows.len() * across, |cell| wanted(first + cell));
+            for &index in &order {
+                match &reaches[index] {
+                    Reach::Nowhere => {}
+                    Reach::Pixels(columns, pixel_rows, hidden_by) => {
+                        let from = (pixel_rows.start / TILE).max(rows.start);
+                        let to = pixel_rows.end.div_ceil(TILE).min(rows.end);
+                        for ty in from..to {
+                            for tx in columns.start / TILE..columns.end.div_ceil(TILE) {
+                                let tile = ty * across + tx;
+                                if occluders[tile] & *hidden_by == 0 {
+                                    lists.add(tile - first, index);
+                                }
                             }
                         }
                     }
-                }
-                Reach::Plane(k) => {
-                    let plane = &seen[*k];
-                    for tile in 0..across * down {
-                        if !wanted(tile) {
-                            continue;
-                        }
-                        let at = plane.at(place(tile));
-                        // Behind a nearer plane: both met ahead throughout, then the
-                        // sign of s - s' at the corners.
-                        let both = |j: usize| ahead[tile] & (1 << *k | 1 << j) == 1 << *k | 1 << j;
-                        let hidden = (seen.iter().enumerate()).any(|(j, nearer)| {
-                            j != *k
-                                && occluders[tile] & 1 << j != 0
-                                && both(j)
-                                && plane.beyond(&at, nearer, &nearer.at(place(tile)))
-                        });
-                        if !hidden && !plane.behind_the_eye(&at) {
-                            lists.add(tile, index);
+                    Reach::Plane(k) => {
+                        let plane = &seen[*k];
+                        for tile in first..rows.end * across {
+                            if !wanted(tile) {
+                                continue;
+                            }
+                            let at = plane.at(place(tile));
+                            // Behind a nearer plane: both met ahead throughout, then the
+                            // sign of s - s' at the corners.
+                            let both =
+                                |j: usize| ahead[tile] & (1 << *k | 1 << j) == 1 << *k | 1 << j;
+                            let hidden = (seen.iter().enumerate()).any(|(j, nearer)| {
+                                j != *k
+                                    && occluders[tile] & 1 << j != 0
+                                    && both(j)
+                                    && plane.beyond(&at, nearer, &nearer.at(place(tile)))
+                            });
+                            if !hidden && !plane.behind_the_eye(&at) {
+                                lists.add(tile - first, index);
+                            }
                         }
                     }
+                    Reach::Everywhere => lists.add_everywhere(index),
                 }
-                Reach::Everywhere => lists.add_everywhere(index),
             }
-        }
+            lists.finish()
+        });
         Some(Tiles {
             across,
-            lists: lists.finish(),
+            lists: Lists::joined(bands),
             nearest,
         })
     }
@@ -553,12 +570,32 @@ mod tests {
                 let boxes = Boxes::for_kernel(&scene, KernelChoice::Accurate);
                 let f32_boxes = Boxes::for_kernel(&scene, KernelChoice::TextbookF32);
                 let pixels = (&camera.xs[..], &camera.ys[..]);
-                let tiles_of =
-                    |boxes| Tiles::new(&scene, boxes, camera.viewpoint, pixels, |_| false, None);
+                let tiles_on = |boxes, threads: &Threads| {
+                    Tiles::new(
+                        &scene,
+                        boxes,
+                        camera.viewpoint,
+                        pixels,
+                        |_| false,
+                        None,
+                        threads,
+                    )
+                };
+                let tiles_of = |boxes| tiles_on(boxes, &Threads::one());
                 let (Some(tiles), Some(f32_tiles)) = (tiles_of(&boxes), tiles_of(&f32_boxes))
                 else {
                     continue;
                 };
+                // Built in bands on three threads, the same lists.
+                let pool = Threads::of(&Options {
+                    threads: 3,
+                    ..options
+                });
+                let banded = tiles_on(&boxes, &pool).unwrap();
+                for (y, x) in (0..30).flat_map(|y| (0..41).map(move |x| (y, x))) {
+                    let list = |t: &Tiles| t.at(x, y).map(|tile| tile.objects.to_vec());
+                    assert_eq!(list(&banded), list(&tiles), "eye {eye}, pixel ({x}, {y})");
+                }
                 for y in 0..30 {
                     for x in 0..41 {
                         let Some(ray) = camera.ray(x, y) else {

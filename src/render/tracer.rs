@@ -8,6 +8,7 @@ use super::objects::{From, Hit, Objects};
 use super::record::{Event, LightStep, Recorder};
 use super::shading::{Screen, material_and_pattern};
 use super::stage::{Show, Stage};
+use super::threads::Threads;
 use super::tiles::Tile;
 use super::variant::{Divisor, LightRules, ObjectRules, Rulebook};
 use super::{Camera, Options, object_colour};
@@ -31,13 +32,14 @@ pub(crate) struct Tracer<'a, B> {
 
 impl<'a, B: Rulebook> Tracer<'a, B> {
     /// The tracer of `scene` (as its variants changed it) under `options` and `rules`,
-    /// with tiles for the camera's rays when a camera is given: every tile's list, or
-    /// those `cells` marks ([`Tiles::new`](super::tiles::Tiles::new)).
+    /// with tiles for the camera's rays when a camera is given (built on its threads):
+    /// every tile's list, or those `cells` marks
+    /// ([`Tiles::new`](super::tiles::Tiles::new)).
     pub(crate) fn new(
         scene: &'a Scene,
         rules: B,
         options: &Options,
-        camera: Option<&Camera>,
+        camera: Option<(&Camera, &Threads)>,
         cells: Option<&[bool]>,
     ) -> Tracer<'a, B> {
         Tracer {

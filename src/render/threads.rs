@@ -1,0 +1,67 @@
+//! The threads a whole image is rendered on (`--threads N`): one pool, started before
+//! anything is built, so that the camera rays' tiles (`src/render/tiles.rs`) are built on
+//! it as well as the pixels traced. Every value is computed as on one thread, only the
+//! order of the work differs: the image is the same bytes for every N.
+//!
+//! Without the `threads` feature (the WebAssembly build) everything runs on the calling
+//! thread.
+
+#[cfg(feature = "threads")]
+use super::MAX_THREADS;
+use super::Options;
+
+/// A pool of worker threads, or none: the calling thread does the work.
+pub(crate) struct Threads {
+    #[cfg(feature = "threads")]
+    pool: Option<rayon::ThreadPool>,
+}
+
+impl Threads {
+    /// The calling thread alone.
+    pub(crate) fn one() -> Threads {
+        Threads {
+            #[cfg(feature = "threads")]
+            pool: None,
+        }
+    }
+
+    /// The threads `options` asks for: a pool of `options.threads` (0: one per core, at
+    /// most [`MAX_THREADS`]) unless that is 1, or the pool cannot be started.
+    pub(crate) fn of(options: &Options) -> Threads {
+        #[cfg(feature = "threads")]
+        if options.threads != 1 {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(options.threads.min(MAX_THREADS))
+                .build()
+                .ok();
+            return Threads { pool };
+        }
+        let _ = options;
+        Threads::one()
+    }
+
+    /// The pool, if there is one.
+    #[cfg(feature = "threads")]
+    pub(crate) fn pool(&self) -> Option<&rayon::ThreadPool> {
+        self.pool.as_ref()
+    }
+
+    /// How many threads share the work.
+    pub(crate) fn count(&self) -> usize {
+        #[cfg(feature = "threads")]
+        if let Some(pool) = &self.pool {
+            return pool.current_num_threads();
+        }
+        1
+    }
+
+    /// `f(i)` for every i in `0..n`, in order, spread over the threads.
+    pub(crate) fn map<T: Send>(&self, n: usize, f: impl Fn(usize) -> T + Sync + Send) -> Vec<T> {
+        #[cfg(feature = "threads")]
+        if let Some(pool) = &self.pool {
+            use rayon::prelude::*;
+            return pool.install(|| (0..n).into_par_iter().map(f).collect());
+        }
+        (0..n).map(f).collect()
+    }
+}
