@@ -124,7 +124,7 @@ pub fn diagnose_and_focus(
     levels: u8,
 ) -> (Vec<Diagnosis>, Option<Focus>) {
     // Which pixels differ, a bit each (not a list of them all).
-    let (mask, count) = super::differing(&rendered.image, student, levels, |_| {});
+    let (mask, count) = super::differing(&rendered.image, student, levels);
     with_mask(scene, options, rendered, student, levels, (&mask, count))
 }
 
@@ -400,11 +400,16 @@ impl Agreeing {
         let reference = (rendered.paths.chunks(64)).zip(rendered.image.pixels.chunks(64));
         let mut mask = Vec::with_capacity(pixels.div_ceil(64));
         let mut count = 0;
+        // At the tolerance 0 the stepped pixel and the student's are compared whole.
+        let agrees = |paths, bytes, theirs| match levels {
+            0 => steps.apply_packed(paths, render::packed(bytes)) == render::packed(theirs),
+            _ => within(steps.apply(paths, bytes), theirs, levels),
+        };
         for ((paths, bytes), theirs) in reference.zip(student.pixels.chunks(64)) {
             let mut word = 0u64;
             for (k, ((&paths, &bytes), &theirs)) in paths.iter().zip(bytes).zip(theirs).enumerate()
             {
-                word |= u64::from(within(steps.apply(paths, bytes), theirs, levels)) << k;
+                word |= u64::from(agrees(paths, bytes, theirs)) << k;
             }
             count += word.count_ones() as usize;
             mask.push(word);
@@ -777,7 +782,7 @@ mod tests {
                 .fold(options, |o, &v| o.with_variant(v).unwrap());
             let student = render::render(&scene, &student_options, |_| {});
             let rendered = crate::compare::reference_at(&scene, &options, 1e-7, true);
-            let (mask, count) = super::super::differing(&rendered.image, &student, 0, |_| {});
+            let (mask, count) = super::super::differing(&rendered.image, &student, 0);
             let untouched: [std::cell::OnceCell<Agreeing>; 3] = Default::default();
             let mut candidates = vec![
                 vec![Variant::of(Kind::RoundBytes)],

@@ -237,23 +237,19 @@ fn channel_sum_of(a: [u8; 3], b: [u8; 3]) -> u16 {
 
 /// Which pixels differ by more than `levels` (pixel i: bit i % 64 of word i / 64) and how
 /// many, in one pass without a branch per pixel (under another byte rule half the pixels
-/// differ, in no pattern a branch could learn); `each(differences)` is told every pixel's
-/// three channel differences on the way.
-pub(crate) fn differing(
-    reference: &Image,
-    student: &Image,
-    levels: u8,
-    mut each: impl FnMut([u8; 3]),
-) -> (Vec<u64>, usize) {
+/// differ, in no pattern a branch could learn). At the tolerance 0 a pixel differs where
+/// its bytes, packed in a word, do.
+pub(crate) fn differing(reference: &Image, student: &Image, levels: u8) -> (Vec<u64>, usize) {
     let mut mask = Vec::with_capacity(reference.pixels.len().div_ceil(64));
     let mut count = 0;
+    let beyond = |a: [u8; 3], b: [u8; 3]| match levels {
+        0 => render::packed(a) != render::packed(b),
+        _ => pixel_difference(a, b) > levels,
+    };
     for (a, b) in (reference.pixels.chunks(64)).zip(student.pixels.chunks(64)) {
         let mut word = 0u64;
         for (k, (&a, &b)) in a.iter().zip(b).enumerate() {
-            let differences = [0, 1, 2].map(|c| a[c].abs_diff(b[c]));
-            each(differences);
-            let difference = differences[0].max(differences[1]).max(differences[2]);
-            word |= u64::from(difference > levels) << k;
+            word |= u64::from(beyond(a, b)) << k;
         }
         count += word.count_ones() as usize;
         mask.push(word);
@@ -261,17 +257,16 @@ pub(crate) fn differing(
     (mask, count)
 }
 
-/// The pixels of word `w` of a mask (pixel i: bit i % 64 of word i / 64) whose bits are
-/// set, in order.
-fn set_bits(w: usize, word: u64) -> impl Iterator<Item = usize> {
-    let mut bits = word;
-    std::iter::from_fn(move || {
-        (bits != 0).then(|| {
-            let i = w * 64 + bits.trailing_zeros() as usize;
+/// `each(i)` for the pixels i whose bits are set in `mask` (pixel i: bit i % 64 of word
+/// i / 64), in order: a word at a time, the set bits found by counting zeros.
+fn for_each_set(mask: &[u64], mut each: impl FnMut(usize)) {
+    for (w, &word) in mask.iter().enumerate() {
+        let mut bits = word;
+        while bits != 0 {
+            each(w * 64 + bits.trailing_zeros() as usize);
             bits &= bits - 1;
-            i
-        })
-    })
+        }
+    }
 }
 
 /// The share of pixels (0 to 1) whose channels all differ by at most `levels`.
@@ -402,16 +397,21 @@ pub fn report(
     // Kept in a heap of the `worst` first so far, whose top is the last of them: memory
     // for the list, not for every differing pixel.
     let mut kept = std::collections::BinaryHeap::with_capacity(settings.worst.min(pixels) + 1);
-    // One pass: the pixels beyond the tolerance, and each pixel's channel differences.
+    // The pixels beyond the tolerance, in one pass.
+    let (beyond, differing_pixels) = differing(reference, student, levels);
+    // The channels' differences, summed and the largest: at the tolerance 0 every pixel
+    // that differs at all is beyond it, and they are summed in the pass below; above it,
+    // over every pixel.
     let (mut channel_sum, mut max_channel_difference) = (0u64, 0u8);
-    let (beyond, differing_pixels) = differing(reference, student, levels, |[r, g, b]| {
-        channel_sum += u64::from(u16::from(r) + u16::from(g) + u16::from(b));
-        max_channel_difference = max_channel_difference.max(r.max(g).max(b));
-    });
+    if levels > 0 {
+        for (&a, &b) in reference.pixels.iter().zip(&student.pixels) {
+            channel_sum += u64::from(channel_sum_of(a, b));
+            max_channel_difference = max_channel_difference.max(pixel_difference(a, b));
+        }
+    }
     // Then the pixels beyond it: those excused, their objects, the worst.
     let mut differing_fragile_pixels = 0;
-    let set = (beyond.iter().enumerate()).flat_map(|(w, &word)| set_bits(w, word));
-    for i in set {
+    for_each_set(&beyond, |i| {
         let (a, b) = (reference.pixels[i], student.pixels[i]);
         let excused = excused(i);
         differing_fragile_pixels += usize::from(excused);
@@ -419,19 +419,24 @@ pub fn report(
             let object = rendered.marks[i].first().index().unwrap_or(background);
             by_object[object] += 1;
         }
+        let (difference, sum) = (pixel_difference(a, b), channel_sum_of(a, b));
+        if levels == 0 {
+            channel_sum += u64::from(sum);
+            max_channel_difference = max_channel_difference.max(difference);
+        }
         // The order above in one number: excused last, then the larger difference, the
         // larger sum, the earlier pixel first.
-        let difference = 255 - u128::from(pixel_difference(a, b));
-        let sum = 1023 - u128::from(channel_sum_of(a, b));
+        let difference = 255 - u128::from(difference);
+        let sum = 1023 - u128::from(sum);
         let key = u128::from(excused) << 127 | difference << 119 | sum << 109 | i as u128;
         if kept.len() == settings.worst && kept.peek().is_none_or(|&last| key >= last) {
-            continue;
+            return;
         }
         kept.push(key);
         if kept.len() > settings.worst {
             kept.pop();
         }
-    }
+    });
     let fragile_pixels = rendered
         .marks
         .iter()

@@ -29,7 +29,7 @@ pub fn ppm(image: &Image) -> Vec<u8> {
     let header = format!("P6 {} {} 255\n", image.width, image.height);
     let mut bytes = Vec::with_capacity(header.len() + image.pixels.len() * 3);
     bytes.extend_from_slice(header.as_bytes());
-    bytes.extend(image.pixels.iter().flatten());
+    bytes.extend_from_slice(image.pixels.as_flattened());
     bytes
 }
 
@@ -37,10 +37,9 @@ pub fn ppm(image: &Image) -> Vec<u8> {
 pub fn png(image: &Image) -> io::Result<Vec<u8>> {
     let mut bytes = Vec::new();
     let encoder = image::codecs::png::PngEncoder::new(&mut bytes);
-    let raw: Vec<u8> = image.pixels.iter().flatten().copied().collect();
     image::ImageEncoder::write_image(
         encoder,
-        &raw,
+        image.pixels.as_flattened(),
         image.width as u32,
         image.height as u32,
         image::ExtendedColorType::Rgb8,

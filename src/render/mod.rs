@@ -24,8 +24,8 @@ mod tracer;
 pub mod variant;
 
 pub use choices::{Choices, by_name, size_problem};
-pub(crate) use reach::Steps;
 pub use reach::{Paths, Reach};
+pub(crate) use reach::{Steps, packed};
 pub use record::{Event, LightStep, Skip, Stats};
 pub use shading::PatternNote;
 pub use stage::{Show, Stage};
@@ -45,6 +45,7 @@ use record::Recorder;
 use std::borrow::Cow;
 use std::sync::atomic::{AtomicU64, Ordering};
 use threads::Threads;
+use tiles::Tile;
 use tracer::Tracer;
 use variant::{AsWritten, Rulebook, Rules};
 
@@ -253,25 +254,21 @@ fn pixels_of<B: Rulebook>(
     // What a camera ray that hits nothing gives, in every stage and diagnostic image.
     let background = setup.rules.bytes(DVec3::ZERO);
     with_kernel!(options.kernel, K => {
-        let pixel = |x, y| pixel_bytes::<K, B>(setup, &tracer, background, x, y);
-        each_pixel(setup, options, pixel, progress)
+        let pixel = |x, y, tile| pixel_bytes::<K, B>(setup, &tracer, x, y, tile);
+        each_span(setup, options, &tracer, background, pixel, progress)
     })
 }
 
-/// The bytes of pixel (x, y), its camera ray traced by `tracer` through its tile's list;
-/// `background`, the bytes of black, without a ray where the tile sees no object.
+/// The bytes of pixel (x, y), its camera ray traced by `tracer` through its tile's list
+/// `tile`.
 #[inline(always)]
 fn pixel_bytes<K: Kernel, B: Rulebook>(
     setup: &Setup,
     tracer: &Tracer<B>,
-    background: [u8; 3],
     x: usize,
     y: usize,
+    tile: Option<Tile>,
 ) -> [u8; 3] {
-    let tile = tracer.objects.tile(x, y);
-    if tile.is_some_and(|tile| tile.objects.is_empty()) {
-        return background;
-    }
     let colour = match setup.camera.ray(x, y) {
         Some(ray) => tracer.pixel::<K>(ray, tile, &mut ()),
         None => DVec3::ZERO,
@@ -322,6 +319,42 @@ fn each_pixel<T: Send + Clone + Default>(
         let y = setup.row_of(row, options.height);
         for (x, pixel) in out.iter_mut().enumerate() {
             *pixel = per_pixel(x, y);
+        }
+    };
+    in_bands(
+        &setup.threads,
+        options.width,
+        &mut pixels,
+        render_row,
+        progress,
+    );
+    pixels
+}
+
+/// [`each_pixel`] for the camera rays: `per_pixel(x, y, tile)` with the list of the
+/// pixel's tile, looked up once for each tile's span of a row; where the list is empty
+/// (the tile sees no object) every pixel of the span is `empty`, without a ray.
+fn each_span<'t, T: Send + Sync + Clone + Default, B: Rulebook>(
+    setup: &Setup,
+    options: &Options,
+    tracer: &'t Tracer<B>,
+    empty: T,
+    per_pixel: impl Fn(usize, usize, Option<Tile<'t>>) -> T + Sync,
+    progress: &mut impl FnMut(usize),
+) -> Vec<T> {
+    let mut pixels = vec![T::default(); options.width * options.height];
+    let render_row = |row: usize, out: &mut [T]| {
+        let y = setup.row_of(row, options.height);
+        for (span, out) in out.chunks_mut(tiles::TILE).enumerate() {
+            let first = span * tiles::TILE;
+            let tile = tracer.objects.tile(first, y);
+            if tile.is_some_and(|tile| tile.objects.is_empty()) {
+                out.fill(empty.clone());
+                continue;
+            }
+            for (x, pixel) in (first..).zip(out) {
+                *pixel = per_pixel(x, y, tile);
+            }
         }
     };
     in_bands(
@@ -538,13 +571,10 @@ fn margins_of<const PATHS: bool, B: Rulebook>(
 ) -> Vec<Mark> {
     let sizes = margins::Sizes::new(&setup.scene, options.max_dist, tracer.screen(), precision);
     let background = setup.rules.bytes(DVec3::ZERO);
+    // A pixel whose tile sees no object: its paths involve nothing (the slot's 0).
+    let empty = Mark::new(background, Fragility::default(), FirstHit::default());
     with_kernel!(options.kernel, K => {
-        let per_pixel = |x: usize, y: usize| -> Mark {
-            let tile = tracer.objects.tile(x, y);
-            if tile.is_some_and(|tile| tile.objects.is_empty()) {
-                // Its paths involve nothing: the slot's 0.
-                return Mark::new(background, Fragility::default(), FirstHit::default());
-            }
+        let per_pixel = |x: usize, y: usize, tile: Option<Tile>| -> Mark {
             let mut rec = margins::Margins::<PATHS>::new(&sizes);
             let colour = match setup.camera.ray(x, y) {
                 Some(ray) => tracer.pixel::<K>(ray, tile, &mut rec),
@@ -567,7 +597,7 @@ fn margins_of<const PATHS: bool, B: Rulebook>(
             }
             Mark::new(bytes, fragility, first)
         };
-        each_pixel(setup, options, per_pixel, &mut |_| {})
+        each_span(setup, options, &tracer, empty, per_pixel, &mut |_| {})
     })
 }
 
@@ -580,7 +610,10 @@ fn margins_of<const PATHS: bool, B: Rulebook>(
 pub fn render_pixels(scene: &Scene, options: &Options, indices: &[usize]) -> Vec<[u8; 3]> {
     // The kernel chosen once, outside the loop over the pixels (as in `render`).
     with_kernel!(options.kernel, K => at_pixels(scene, options, indices, |setup, tracer, background, x, y| {
-        pixel_bytes::<K, _>(setup, tracer, background, x, y)
+        match tracer.objects.tile(x, y) {
+            Some(tile) if tile.objects.is_empty() => background,
+            tile => pixel_bytes::<K, _>(setup, tracer, x, y, tile),
+        }
     }))
 }
 

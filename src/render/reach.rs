@@ -121,10 +121,23 @@ impl Steps {
     /// `bytes` stepped as `paths` holds under this rule.
     #[inline]
     pub(crate) fn apply(self, paths: Paths, bytes: [u8; 3]) -> [u8; 3] {
-        let steps = paths.0 >> self.first & self.mask;
-        let step = |c: u32| (steps >> c & 1) as u8;
-        [bytes[0] + step(0), bytes[1] + step(1), bytes[2] + step(2)]
+        let [r, g, b, _] = self.apply_packed(paths, packed(bytes)).to_le_bytes();
+        [r, g, b]
     }
+
+    /// [`Steps::apply`] on a pixel packed in a word (red the low byte, [`packed`]): each
+    /// step added to its byte at once (a byte that steps is below 255: no carry).
+    #[inline]
+    pub(crate) fn apply_packed(self, paths: Paths, bytes: u32) -> u32 {
+        let steps = (paths.0 >> self.first & self.mask) as u32;
+        bytes + (steps & 1 | (steps & 2) << 7 | (steps & 4) << 14)
+    }
+}
+
+/// A pixel's bytes in a word, red the low byte: compared and stepped whole.
+#[inline]
+pub(crate) fn packed([r, g, b]: [u8; 3]) -> u32 {
+    u32::from_le_bytes([r, g, b, 0])
 }
 
 /// The pixels a set of variants can change, as far as [`Paths`] tells.

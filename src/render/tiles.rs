@@ -28,7 +28,7 @@ use glam::{DVec2, DVec3};
 use std::ops::Range;
 
 /// Pixels along a tile's side.
-const TILE: usize = 8;
+pub(crate) const TILE: usize = 8;
 
 // A tile's hiding planes are the bits of a `u32`: no tile list is kept beyond
 // `MOST_OBJECTS` planes.
