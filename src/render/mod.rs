@@ -314,21 +314,12 @@ fn each_pixel<T: Send + Clone + Default>(
     per_pixel: impl Fn(usize, usize) -> T + Sync,
     progress: &mut impl FnMut(usize),
 ) -> Vec<T> {
-    let mut pixels = vec![T::default(); options.width * options.height];
-    let render_row = |row: usize, out: &mut [T]| {
-        let y = setup.row_of(row, options.height);
+    let render_row = |y: usize, out: &mut [T]| {
         for (x, pixel) in out.iter_mut().enumerate() {
             *pixel = per_pixel(x, y);
         }
     };
-    in_bands(
-        &setup.threads,
-        options.width,
-        &mut pixels,
-        render_row,
-        progress,
-    );
-    pixels
+    each_row(setup, options, render_row, progress)
 }
 
 /// [`each_pixel`] for the camera rays: `per_pixel(x, y, tile)` with the list of the
@@ -342,9 +333,7 @@ fn each_span<'t, T: Send + Sync + Clone + Default, B: Rulebook>(
     per_pixel: impl Fn(usize, usize, Option<Tile<'t>>) -> T + Sync,
     progress: &mut impl FnMut(usize),
 ) -> Vec<T> {
-    let mut pixels = vec![T::default(); options.width * options.height];
-    let render_row = |row: usize, out: &mut [T]| {
-        let y = setup.row_of(row, options.height);
+    let render_row = |y: usize, out: &mut [T]| {
         for (span, out) in out.chunks_mut(tiles::TILE).enumerate() {
             let first = span * tiles::TILE;
             let tile = tracer.objects.tile(first, y);
@@ -357,11 +346,24 @@ fn each_span<'t, T: Send + Sync + Clone + Default, B: Rulebook>(
             }
         }
     };
+    each_row(setup, options, render_row, progress)
+}
+
+/// The image's pixels in output order, `render_row(y, out)` filling the output row that
+/// holds pixel row y (spec §4.1), on the setup's threads; `progress` is told the rows done.
+fn each_row<T: Send + Clone + Default>(
+    setup: &Setup,
+    options: &Options,
+    render_row: impl Fn(usize, &mut [T]) + Sync,
+    progress: &mut impl FnMut(usize),
+) -> Vec<T> {
+    let mut pixels = vec![T::default(); options.width * options.height];
+    let output_row = |row: usize, out: &mut [T]| render_row(setup.row_of(row, options.height), out);
     in_bands(
         &setup.threads,
         options.width,
         &mut pixels,
-        render_row,
+        output_row,
         progress,
     );
     pixels
