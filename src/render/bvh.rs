@@ -74,16 +74,42 @@ impl Aabb {
     }
 
     /// Whether the ray enters the box at some t in [0, limit]. A zero direction
-    /// component gives ±inf or NaN slabs; `f64::min` and `max` drop the NaN, so a ray
-    /// lying in a face's plane counts as inside, which is safe (it only tests more).
+    /// component gives ±inf or NaN slabs; `f64::min` and `max` drop the NaN (in
+    /// WebAssembly, [`compared`]), so a ray lying in a face's plane counts as inside,
+    /// which is safe (it only tests more).
     #[inline]
     fn entered(&self, base: DVec3, inverse: DVec3, limit: f64) -> bool {
         let near = (self.min - base) * inverse;
         let far = (self.max - base) * inverse;
-        let enter = near.min(far).max_element().max(0.0);
-        let leave = near.max(far).min_element();
+        #[cfg(not(target_arch = "wasm32"))]
+        let (enter, leave) = (
+            near.min(far).max_element().max(0.0),
+            near.max(far).min_element(),
+        );
+        #[cfg(target_arch = "wasm32")]
+        let (enter, leave) = {
+            let [x, y, z] =
+                [(near.x, far.x), (near.y, far.y), (near.z, far.z)].map(|(n, f)| compared(n, f));
+            let low = DVec3::new(x.0, y.0, z.0).max_element();
+            (
+                compared(low, 0.0).1,
+                DVec3::new(x.1, y.1, z.1).min_element(),
+            )
+        };
         enter <= leave && enter <= limit
     }
+}
+
+/// The smaller and the larger of `a` and `b`, a NaN dropped, as `f64::min` and `max`
+/// give them, by comparisons: for WebAssembly, which has no instruction that drops a NaN
+/// and calls a function for those (of two equal zeros either may come out, which no
+/// comparison of the box tests tells apart).
+#[cfg_attr(not(target_arch = "wasm32"), allow(dead_code))]
+#[inline(always)]
+fn compared(a: f64, b: f64) -> (f64, f64) {
+    let low = if a < b || b.is_nan() { a } else { b };
+    let high = if a > b || b.is_nan() { a } else { b };
+    (low, high)
 }
 
 /// A node: a box and either two children (`count == 0`: the left child follows this
@@ -426,6 +452,29 @@ fn pad(b: Aabb, padding: f64) -> Aabb {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_compared_minimum_and_maximum_are_f64_s() {
+        // The WebAssembly form of the slabs' ends against f64::min and max, on the values
+        // a slab takes: signed zeros and infinities, NaN, and ordinary numbers.
+        let values = [
+            0.0,
+            -0.0,
+            1.5,
+            -2.25,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+            1e-310,
+        ];
+        let same = |x: f64, y: f64| x == y || (x.is_nan() && y.is_nan());
+        for a in values {
+            for b in values {
+                let (low, high) = compared(a, b);
+                assert!(same(low, a.min(b)) && same(high, a.max(b)), "{a} {b}");
+            }
+        }
+    }
     use crate::shapes::kernel::{Accurate, Kernel, Stable, Textbook, TextbookF32};
     use crate::shapes::testing::Numbers;
 

@@ -34,7 +34,7 @@
 use super::{Kernel, Tangent};
 use super::{solve_quadratic, solve_quadratic_with_slope};
 use crate::shapes::kernel::dd::{
-    Dd, scaled, scaled_product, square, sum_as_dd, sum_as_f64, two_prod, two_sum,
+    Dd, fused, scaled, scaled_product, square, sum_as_dd, sum_as_f64, two_prod, two_sum,
 };
 use crate::shapes::{
     AxisFrame, AxisQuadric, HitNote, Notes, Plane, Quadric, Ray, RootRule, Sphere,
@@ -441,9 +441,9 @@ fn recentre(ray: &Ray, centre: DVec3) -> Recentred {
     let offset_error = sum_error(ray.base, -centre);
     let shift = -offset.dot(ray.dir);
     let near = DVec3::new(
-        shift.mul_add(ray.dir.x, offset.x),
-        shift.mul_add(ray.dir.y, offset.y),
-        shift.mul_add(ray.dir.z, offset.z),
+        fused(shift, ray.dir.x, offset.x),
+        fused(shift, ray.dir.y, offset.y),
+        fused(shift, ray.dir.z, offset.z),
     ) + offset_error;
     Recentred {
         offset,

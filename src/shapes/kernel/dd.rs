@@ -99,6 +99,56 @@ fn split_error(a: f64, b: f64, hi: f64) -> f64 {
     ((ah * bh - hi) + ah * bl + al * bh) + al * bl
 }
 
+/// a × b + c rounded once: the fused multiply-add. In WebAssembly, which has none and
+/// calls a software `fma` of many instructions for `mul_add`, it is emulated from exact
+/// transformations with Boldo and Melquiond's rounding to odd ([`emulated_fma`]); the
+/// same bits.
+#[inline(always)]
+pub(crate) fn fused(a: f64, b: f64, c: f64) -> f64 {
+    #[cfg(target_arch = "wasm32")]
+    return emulated_fma(a, b, c);
+    #[cfg(not(target_arch = "wasm32"))]
+    a.mul_add(b, c)
+}
+
+/// a × b + c rounded once, from error-free transformations (Boldo and Melquiond,
+/// "Emulation of FMA and correctly rounded sums: proved algorithms using rounding to
+/// odd", IEEE Trans. Computers 57, 2008): the product exactly as uh + ul, c + uh exactly
+/// as th + tl, then tl + ul rounded to odd (an inexact sum whose rounding is even moves
+/// to the neighbour on the other side of the exact value) and th plus that, rounded to
+/// nearest. The proof wants no underflow or overflow on the way: where the product, c or
+/// the result lie outside [2^-900, 2^1000] (but for zeros), the software `fma` gives it.
+#[cfg(any(test, target_arch = "wasm32"))]
+#[inline(always)]
+fn emulated_fma(a: f64, b: f64, c: f64) -> f64 {
+    // 2^1000 and 2^-900, as in `split_error`.
+    const LARGE: f64 = f64::from_bits(0x7e7 << 52);
+    const SMALL: f64 = f64::from_bits(0x07b << 52);
+    let in_range = |x: f64| x.abs() > SMALL && x.abs() < LARGE;
+    let uh = a * b;
+    if (a == 0.0 || b == 0.0) && uh == 0.0 {
+        // A zero product (of finite factors) is exact: one rounding of the sum.
+        return uh + c;
+    }
+    if !(in_range(uh) && (c == 0.0 || in_range(c))) {
+        return a.mul_add(b, c);
+    }
+    let ul = split_error(a, b, uh);
+    let t = two_sum(c, uh);
+    let sum = two_sum(t.lo, ul);
+    let bits = sum.hi.to_bits();
+    let odd = match sum.lo != 0.0 && bits & 1 == 0 {
+        true if (sum.lo > 0.0) == (sum.hi > 0.0) => f64::from_bits(bits + 1),
+        true => f64::from_bits(bits - 1),
+        false => sum.hi,
+    };
+    let result = t.hi + odd;
+    match result == 0.0 || in_range(result) {
+        true => result,
+        false => a.mul_add(b, c),
+    }
+}
+
 impl Add for Dd {
     type Output = Dd;
     /// The sum, with an error of a few units in the 106th bit of the larger operand.
@@ -299,6 +349,85 @@ mod tests {
             );
         }
         assert_eq!(SPLITTER, 2f64.powi(27) + 1.0);
+    }
+
+    #[test]
+    fn the_emulated_fused_multiply_add_is_the_processor_s() {
+        // Against `mul_add` (the processor's FMA, or the C library's; both correctly
+        // rounded) on triples from a fixed sequence: exponents across the range and near
+        // the scenes', c of every size against the product, c that cancels the product to
+        // the last bits, ties built from exact products, zeros and non-finite values.
+        fn next(state: &mut u64) -> u64 {
+            *state ^= *state << 13;
+            *state ^= *state >> 7;
+            *state ^= *state << 17;
+            *state
+        }
+        fn number(state: &mut u64, wide: bool) -> f64 {
+            let bits = next(state);
+            let exponent = match wide {
+                true => (next(state) % 2046) + 1,
+                false => 1023 - 30 + (next(state) % 60),
+            };
+            let mantissa = next(state) & ((1 << 52) - 1);
+            f64::from_bits((bits >> 63) << 63 | exponent << 52 | mantissa)
+        }
+        let state = &mut 0x2545_f491_4f6c_dd1d_u64;
+        let mut triples = Vec::new();
+        for k in 0..300_000 {
+            let (a, b) = (number(state, k % 5 == 0), number(state, k % 7 == 0));
+            let product = a * b;
+            let small = (next(state) % 1024) as f64;
+            let c = match k % 6 {
+                0 => number(state, k % 11 == 0),
+                1 => -product,
+                2 => -product * (1.0 + f64::EPSILON * (small % 64.0)),
+                3 => -product + product * f64::EPSILON * ((small % 9.0) - 4.0) / 2.0,
+                4 => small * product.abs().max(1e-300) * f64::EPSILON / 4.0,
+                _ => number(state, false) * (product.abs() + 1.0),
+            };
+            triples.push((a, b, c));
+        }
+        // Double rounding's own cases: a product just off 3 × 2^(k-1) (uh exactly that,
+        // ul a hair below), and c on the grid of 2^k, so that c + uh falls on a midpoint
+        // and only ul says which way: rounding tl + ul to nearest loses it.
+        for k in [-20, 0, 1, 10, 30] {
+            let (a, b) = (
+                3.0 * (1.0 + 2f64.powi(-40)),
+                2f64.powi(k - 1) * (1.0 - 2f64.powi(-40)),
+            );
+            for r in 0..6 {
+                let c = (2f64.powi(52) + f64::from(r)) * 2f64.powi(k);
+                triples.extend([(a, b, c), (-a, b, -c), (a, -b, -c), (-a, -b, c)]);
+            }
+        }
+        let special = [
+            0.0,
+            -0.0,
+            1.0,
+            -1.0,
+            0.5,
+            3.0,
+            f64::INFINITY,
+            f64::NAN,
+            5e-324,
+            1e308,
+        ];
+        for a in special {
+            for b in special {
+                for c in special {
+                    triples.push((a, b, c));
+                }
+            }
+        }
+        for (a, b, c) in triples {
+            let fused = a.mul_add(b, c);
+            let emulated = emulated_fma(a, b, c);
+            assert!(
+                fused.to_bits() == emulated.to_bits() || (fused.is_nan() && emulated.is_nan()),
+                "{a:e} x {b:e} + {c:e}: fma {fused:e}, emulated {emulated:e}"
+            );
+        }
     }
 
     #[test]
