@@ -400,16 +400,11 @@ impl Agreeing {
         let reference = (rendered.paths.chunks(64)).zip(rendered.image.pixels.chunks(64));
         let mut mask = Vec::with_capacity(pixels.div_ceil(64));
         let mut count = 0;
-        // At the tolerance 0 the stepped pixel and the student's are compared whole.
-        let agrees = |paths, bytes, theirs| match levels {
-            0 => steps.apply_packed(paths, render::packed(bytes)) == render::packed(theirs),
-            _ => within(steps.apply(paths, bytes), theirs, levels),
-        };
         for ((paths, bytes), theirs) in reference.zip(student.pixels.chunks(64)) {
             let mut word = 0u64;
             for (k, ((&paths, &bytes), &theirs)) in paths.iter().zip(bytes).zip(theirs).enumerate()
             {
-                word |= u64::from(agrees(paths, bytes, theirs)) << k;
+                word |= u64::from(within(steps.apply(paths, bytes), theirs, levels)) << k;
             }
             count += word.count_ones() as usize;
             mask.push(word);

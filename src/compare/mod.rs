@@ -221,11 +221,12 @@ pub fn pixel_difference(a: [u8; 3], b: [u8; 3]) -> u8 {
 }
 
 /// Whether two pixels' channels all differ by at most `levels`: `pixel_difference(a, b)
-/// <= levels`, and at the default tolerance of 0 the bytes' equality, a compare or two.
+/// <= levels`, and at the default tolerance of 0 the bytes' equality, compared packed in
+/// a word.
 #[inline]
 pub(crate) fn within(a: [u8; 3], b: [u8; 3], levels: u8) -> bool {
     match levels {
-        0 => a == b,
+        0 => render::packed(a) == render::packed(b),
         _ => pixel_difference(a, b) <= levels,
     }
 }
@@ -237,19 +238,14 @@ fn channel_sum_of(a: [u8; 3], b: [u8; 3]) -> u16 {
 
 /// Which pixels differ by more than `levels` (pixel i: bit i % 64 of word i / 64) and how
 /// many, in one pass without a branch per pixel (under another byte rule half the pixels
-/// differ, in no pattern a branch could learn). At the tolerance 0 a pixel differs where
-/// its bytes, packed in a word, do.
+/// differ, in no pattern a branch could learn).
 pub(crate) fn differing(reference: &Image, student: &Image, levels: u8) -> (Vec<u64>, usize) {
     let mut mask = Vec::with_capacity(reference.pixels.len().div_ceil(64));
     let mut count = 0;
-    let beyond = |a: [u8; 3], b: [u8; 3]| match levels {
-        0 => render::packed(a) != render::packed(b),
-        _ => pixel_difference(a, b) > levels,
-    };
     for (a, b) in (reference.pixels.chunks(64)).zip(student.pixels.chunks(64)) {
         let mut word = 0u64;
         for (k, (&a, &b)) in a.iter().zip(b).enumerate() {
-            word |= u64::from(beyond(a, b)) << k;
+            word |= u64::from(!within(a, b, levels)) << k;
         }
         count += word.count_ones() as usize;
         mask.push(word);

@@ -128,7 +128,7 @@ impl Steps {
     /// [`Steps::apply`] on a pixel packed in a word (red the low byte, [`packed`]): each
     /// step added to its byte at once (a byte that steps is below 255: no carry).
     #[inline]
-    pub(crate) fn apply_packed(self, paths: Paths, bytes: u32) -> u32 {
+    fn apply_packed(self, paths: Paths, bytes: u32) -> u32 {
         let steps = (paths.0 >> self.first & self.mask) as u32;
         bytes + (steps & 1 | (steps & 2) << 7 | (steps & 4) << 14)
     }
