@@ -24,6 +24,8 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     args.how.check()?;
     let text = read_scene()?;
     let scene = legacy_rt::load(&text).map_err(|error| Failure(error.to_string(), 1))?;
+    // The scene holds nothing of its text: free it before the render's own memory.
+    drop(text);
     if args.dump {
         return emit_to_stdout(legacy_rt::dump(&scene).as_bytes());
     }
