@@ -405,6 +405,7 @@ impl Shape {
     }
 
     /// Point and normal where `ray` meets this shape at distance `t` (from [`Shape::hit`]).
+    #[inline(always)]
     pub fn surface(&self, ray: &Ray, t: f64) -> Surface {
         let point = ray.base + t * ray.dir;
         let (normal, plane_xy) = match self {
