@@ -340,6 +340,42 @@ fn a_scene_over_the_input_limit_is_a_scene_error_naming_the_limit() {
 }
 
 #[test]
+fn a_scene_file_on_standard_input_reads_as_the_piped_scene() {
+    // `legacy-rt < file` reads a regular file, whose size sizes the read; piped, the
+    // same bytes. The image is the same from the file, from a hard link to it and from
+    // the pipe; a sparse file past the limit is refused as the piped one is.
+    let dir = folder("stdin-file");
+    let scene =
+        std::fs::read(concat!(env!("CARGO_MANIFEST_DIR"), "/examples/spheres.txt")).unwrap();
+    let file = dir.join("scene.txt");
+    std::fs::write(&file, &scene).unwrap();
+    let link = dir.join("link.txt");
+    std::fs::hard_link(&file, &link).unwrap();
+    let from_file = |path: &Path| {
+        Command::new(env!("CARGO_BIN_EXE_legacy-rt"))
+            .args(["40", "30"])
+            .stdin(std::fs::File::open(path).unwrap())
+            .output()
+            .unwrap()
+    };
+    let piped = run(&["40", "30"], &scene);
+    assert!(piped.status.success());
+    for path in [&file, &link] {
+        let output = from_file(path);
+        assert!(output.status.success(), "{}", stderr(&output));
+        assert_eq!(output.stdout, piped.stdout);
+    }
+    let huge = dir.join("huge.txt");
+    let handle = std::fs::File::create(&huge).unwrap();
+    handle.set_len((256 << 20) + 1).unwrap();
+    let output = from_file(&huge);
+    assert_eq!(output.status.code(), Some(1));
+    assert!(stderr(&output).contains("256 MiB"), "{}", stderr(&output));
+    assert!(output.stdout.is_empty());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
 fn the_scene_named_as_an_argument_says_how_to_run_it() {
     let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/spheres.txt");
     for name in [scene, "scene.txt"] {
