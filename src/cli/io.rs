@@ -78,8 +78,13 @@ pub fn check_stdout() -> Result<(), Failure> {
 
 /// Writes `bytes` to standard output; standard output closed is an error that says so.
 pub fn emit_to_stdout(bytes: &[u8]) -> Result<(), Failure> {
+    emit_pieces_to_stdout(&[bytes])
+}
+
+/// Writes `pieces` to standard output one after the other, as [`emit_to_stdout`].
+pub fn emit_pieces_to_stdout(pieces: &[&[u8]]) -> Result<(), Failure> {
     check_stdout()?;
-    match legacy_rt::image_output::write(&mut std::io::stdout().lock(), bytes) {
+    match legacy_rt::image_output::write(&mut std::io::stdout().lock(), pieces) {
         Ok(()) => Ok(()),
         // The reader went away (`| head`): end quietly.
         Err(error) if error.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),

@@ -1,7 +1,7 @@
 //! `legacy-rt [W] [H] < scene.txt > image.ppm`: the course's command, and `--dump`.
 
 use super::interrupt;
-use super::io::{emit_to_stdout, read_scene};
+use super::io::{emit_pieces_to_stdout, emit_to_stdout, read_scene};
 use super::{Failure, RenderArgs, check_stdout, output_file, say, size, usage};
 use legacy_rt::image_output::file::OutputFile;
 use legacy_rt::image_output::{self, Format};
@@ -70,13 +70,13 @@ pub fn write_image(
     format: Format,
     output: Option<OutputFile>,
 ) -> Result<(), Failure> {
-    let bytes = image_output::encode(image, format)
+    let encoded = image_output::encode(image, format)
         .map_err(|error| Failure(format!("error: cannot encode the image: {error}"), 2))?;
     match output {
         Some(output) => output
-            .write(&bytes, interrupt::partial_file)
+            .write(&encoded.pieces(), interrupt::partial_file)
             .map_err(|error| Failure(format!("error: {error}"), 2)),
-        None => emit_to_stdout(&bytes),
+        None => emit_pieces_to_stdout(&encoded.pieces()),
     }
 }
 

@@ -20,7 +20,7 @@
 
 use super::Format;
 use std::fs::{self, File, Metadata, OpenOptions};
-use std::io::{self, Write};
+use std::io;
 use std::path::{Path, PathBuf};
 
 /// Where an image will go, decided before rendering.
@@ -107,17 +107,17 @@ impl OutputFile {
         Ok(OutputFile { shown, format, how })
     }
 
-    /// Writes `bytes`, whole or not at all where the target allows it. `temporary` is
+    /// Writes `pieces` one after the other, whole or not at all where the target allows it. `temporary` is
     /// told the temporary file's path while it exists (`Some`) and when it is gone
     /// (`None`), so that an interrupt handler can remove it.
     pub fn write(
         &self,
-        bytes: &[u8],
+        pieces: &[&[u8]],
         temporary: impl Fn(Option<&Path>),
     ) -> Result<(), OutputError> {
         let io_error = |error| OutputError::Io(self.shown.clone(), error);
         match &self.how {
-            How::InPlace(path) => write_in_place(path, bytes).map_err(io_error),
+            How::InPlace(path) => write_in_place(path, pieces).map_err(io_error),
             How::Replace { path, existing } => {
                 let partial = match create_beside(path) {
                     Ok(partial) => partial,
@@ -127,12 +127,12 @@ impl OutputFile {
                         if error.kind() == io::ErrorKind::PermissionDenied
                             && existing.is_some() =>
                     {
-                        return write_in_place(path, bytes).map_err(io_error);
+                        return write_in_place(path, pieces).map_err(io_error);
                     }
                     Err(error) => return Err(io_error(error)),
                 };
                 temporary(Some(&partial.1));
-                let result = fill_and_rename(partial, path, bytes, existing.as_ref());
+                let result = fill_and_rename(partial, path, pieces, existing.as_ref());
                 temporary(None);
                 result.map_err(io_error)
             }
@@ -145,17 +145,17 @@ impl OutputFile {
 /// link, a file of other permissions) is replaced, never written through: what `grade`
 /// needs for the files of its report folder.
 pub fn replace(path: &Path, bytes: &[u8]) -> io::Result<()> {
-    fill_and_rename(create_beside(path)?, path, bytes, None)
+    fill_and_rename(create_beside(path)?, path, &[bytes], None)
 }
 
 /// Fills the new file `partial` and renames it to `path`; removed if that fails.
 fn fill_and_rename(
     (file, partial): (File, PathBuf),
     path: &Path,
-    bytes: &[u8],
+    pieces: &[&[u8]],
     existing: Option<&Metadata>,
 ) -> io::Result<()> {
-    let result = fill(file, bytes, existing).and_then(|()| fs::rename(&partial, path));
+    let result = fill(file, pieces, existing).and_then(|()| fs::rename(&partial, path));
     if result.is_err() {
         let _ = fs::remove_file(&partial);
     }
@@ -175,14 +175,13 @@ fn links(metadata: &Metadata) -> u64 {
     }
 }
 
-fn write_in_place(path: &Path, bytes: &[u8]) -> io::Result<()> {
+fn write_in_place(path: &Path, pieces: &[&[u8]]) -> io::Result<()> {
     let mut file = OpenOptions::new()
         .write(true)
         .create(true)
         .truncate(true)
         .open(path)?;
-    file.write_all(bytes)?;
-    file.flush()
+    super::write(&mut file, pieces)
 }
 
 /// A new, empty file in the folder of `path`, named after it and this process, that
@@ -207,10 +206,10 @@ fn create_beside(path: &Path) -> io::Result<(File, PathBuf)> {
     }
 }
 
-/// Writes the bytes, gives the file the permissions and owner of the file it replaces,
+/// Writes the pieces, gives the file the permissions and owner of the file it replaces,
 /// and makes sure the bytes are on disk before the rename makes them visible.
-fn fill(mut file: File, bytes: &[u8], existing: Option<&Metadata>) -> io::Result<()> {
-    file.write_all(bytes)?;
+fn fill(mut file: File, pieces: &[&[u8]], existing: Option<&Metadata>) -> io::Result<()> {
+    super::write(&mut file, pieces)?;
     if let Some(existing) = existing {
         file.set_permissions(existing.permissions())?;
         #[cfg(unix)]
