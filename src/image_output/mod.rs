@@ -93,4 +93,22 @@ mod tests {
         let encoded = encode(&image, Format::Ppm).unwrap();
         assert_eq!(encoded.pieces().concat(), expected);
     }
+
+    #[test]
+    fn png_pieces_decode_to_the_pixels_and_pieces_are_written_in_order() {
+        let image = Image {
+            width: 2,
+            height: 2,
+            pixels: vec![[1, 2, 3], [4, 5, 6], [7, 8, 9], [250, 251, 252]],
+        };
+        let encoded = encode(&image, Format::Png).unwrap();
+        let mut written = Vec::new();
+        write(&mut written, &encoded.pieces()).unwrap();
+        let decoded = image::load_from_memory(&written).unwrap().to_rgb8();
+        assert_eq!((decoded.width(), decoded.height()), (2, 2));
+        assert_eq!(decoded.as_raw().as_slice(), image.pixels.as_flattened());
+        let mut joined = Vec::new();
+        write(&mut joined, &[b"P6 1 1 255\n", &[9, 8, 7]]).unwrap();
+        assert_eq!(joined, b"P6 1 1 255\n\x09\x08\x07");
+    }
 }
