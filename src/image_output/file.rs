@@ -107,9 +107,9 @@ impl OutputFile {
         Ok(OutputFile { shown, format, how })
     }
 
-    /// Writes `pieces` one after the other, whole or not at all where the target allows it. `temporary` is
-    /// told the temporary file's path while it exists (`Some`) and when it is gone
-    /// (`None`), so that an interrupt handler can remove it.
+    /// Writes `pieces` one after the other, whole or not at all where the target allows
+    /// it. `temporary` is told the temporary file's path while it exists (`Some`) and
+    /// when it is gone (`None`), so that an interrupt handler can remove it.
     pub fn write(
         &self,
         pieces: &[&[u8]],
