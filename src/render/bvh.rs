@@ -311,8 +311,8 @@ impl Bvh {
     }
 
     /// Hands `visit` the unbounded objects, then the objects of every leaf whose box the
-    /// ray enters before the limit `visit` last returned, nearer child first. `visit` returns the new
-    /// limit, or `None` to stop; `walk` returns whether it was stopped.
+    /// ray enters before the limit `visit` last returned, nearer child first. `visit`
+    /// returns the new limit, or `None` to stop; `walk` returns whether it was stopped.
     #[inline]
     fn walk(&self, ray: &Ray, visit: impl FnMut(&[u32]) -> Option<f64>) -> bool {
         // A stack as deep as the tree needs: a new stack is cleared, and clearing the 64
