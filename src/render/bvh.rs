@@ -277,7 +277,7 @@ impl Bvh {
     /// object, and `counts` (t > 0, inside the object's box) is asked only of a hit
     /// that would win. Boxes entered up to `slack` times the best t so far are visited
     /// (1: only those that can still win).
-    #[inline(always)]
+    #[inline]
     pub(crate) fn closest(
         &self,
         ray: &Ray,
@@ -303,7 +303,7 @@ impl Bvh {
 
     /// Whether `test` finds any object among those whose boxes the ray enters before
     /// `limit`.
-    #[inline(always)]
+    #[inline]
     pub(crate) fn any(&self, ray: &Ray, limit: f64, mut test: impl FnMut(usize) -> bool) -> bool {
         self.walk(ray, |objects| {
             (!objects.iter().any(|&index| test(index as usize))).then_some(limit)

@@ -244,9 +244,7 @@ pub fn render(scene: &Scene, options: &Options, mut progress: impl FnMut(usize))
     }
 }
 
-/// Every pixel's bytes, in output order. Where shadow rays are cast, a tile's span of a
-/// row at a time ([`Tracer::span`]), pixel by pixel otherwise; the bytes are the same
-/// (the integration test `spans_give_each_pixels_own_bytes`).
+/// Every pixel's bytes, in output order.
 fn pixels_of<B: Rulebook>(
     setup: &Setup,
     tracer: Tracer<B>,
@@ -256,29 +254,8 @@ fn pixels_of<B: Rulebook>(
     // What a camera ray that hits nothing gives, in every stage and diagnostic image.
     let background = setup.rules.bytes(DVec3::ZERO);
     with_kernel!(options.kernel, K => {
-        if tracer.shadow_rays() {
-            let span = |first: usize, y: usize, tile, out: &mut [[u8; 3]]| {
-                let mut rays = [None; tiles::TILE];
-                let rays = &mut rays[..out.len()];
-                for (x, ray) in (first..).zip(rays.iter_mut()) {
-                    *ray = setup.camera.ray(x, y);
-                }
-                let mut colours = [DVec3::ZERO; tiles::TILE];
-                let colours = &mut colours[..out.len()];
-                tracer.span::<K>(rays, tile, colours);
-                for (colour, out) in colours.iter().zip(out) {
-                    *out = setup.rules.bytes(*colour);
-                }
-            };
-            each_span(setup, options, &tracer, background, span, progress)
-        } else {
-            let pixels = |first: usize, y: usize, tile, out: &mut [[u8; 3]]| {
-                for (x, out) in (first..).zip(out) {
-                    *out = pixel_bytes::<K, B>(setup, &tracer, x, y, tile);
-                }
-            };
-            each_span(setup, options, &tracer, background, pixels, progress)
-        }
+        let pixel = |x, y, tile| pixel_bytes::<K, B>(setup, &tracer, x, y, tile);
+        each_span(setup, options, &tracer, background, pixel, progress)
     })
 }
 
@@ -345,16 +322,15 @@ fn each_pixel<T: Send + Clone + Default>(
     each_row(setup, options, render_row, progress)
 }
 
-/// [`each_pixel`] for the camera rays, a tile's span of a row at a time:
-/// `per_span(first, y, tile, out)` fills the pixels from (first, y) on with the list of
-/// their tile, looked up once for the span; where the list is empty (the tile sees no
-/// object) every pixel of the span is `empty`, without a ray.
+/// [`each_pixel`] for the camera rays: `per_pixel(x, y, tile)` with the list of the
+/// pixel's tile, looked up once for each tile's span of a row; where the list is empty
+/// (the tile sees no object) every pixel of the span is `empty`, without a ray.
 fn each_span<'t, T: Send + Sync + Clone + Default, B: Rulebook>(
     setup: &Setup,
     options: &Options,
     tracer: &'t Tracer<B>,
     empty: T,
-    per_span: impl Fn(usize, usize, Option<Tile<'t>>, &mut [T]) + Sync,
+    per_pixel: impl Fn(usize, usize, Option<Tile<'t>>) -> T + Sync,
     progress: &mut impl FnMut(usize),
 ) -> Vec<T> {
     let render_row = |y: usize, out: &mut [T]| {
@@ -365,7 +341,9 @@ fn each_span<'t, T: Send + Sync + Clone + Default, B: Rulebook>(
                 out.fill(empty.clone());
                 continue;
             }
-            per_span(first, y, tile, out);
+            for (x, pixel) in (first..).zip(out) {
+                *pixel = per_pixel(x, y, tile);
+            }
         }
     };
     each_row(setup, options, render_row, progress)
@@ -621,12 +599,7 @@ fn margins_of<const PATHS: bool, B: Rulebook>(
             }
             Mark::new(bytes, fragility, first)
         };
-        let per_span = |first: usize, y: usize, tile, out: &mut [Mark]| {
-            for (x, out) in (first..).zip(out) {
-                *out = per_pixel(x, y, tile);
-            }
-        };
-        each_span(setup, options, &tracer, empty, per_span, &mut |_| {})
+        each_span(setup, options, &tracer, empty, per_pixel, &mut |_| {})
     })
 }
 
