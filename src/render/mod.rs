@@ -244,7 +244,9 @@ pub fn render(scene: &Scene, options: &Options, mut progress: impl FnMut(usize))
     }
 }
 
-/// Every pixel's bytes, in output order.
+/// Every pixel's bytes, in output order. Where shadow rays are cast, a tile's span of a
+/// row at a time ([`Tracer::span`]), pixel by pixel otherwise; the bytes are the same
+/// (the integration test `spans_give_each_pixels_own_bytes`).
 fn pixels_of<B: Rulebook>(
     setup: &Setup,
     tracer: Tracer<B>,
@@ -253,9 +255,21 @@ fn pixels_of<B: Rulebook>(
 ) -> Vec<[u8; 3]> {
     // What a camera ray that hits nothing gives, in every stage and diagnostic image.
     let background = setup.rules.bytes(DVec3::ZERO);
-    with_kernel!(options.kernel, K => {
-        let pixel = |x, y, tile| pixel_bytes::<K, B>(setup, &tracer, x, y, tile);
-        each_span(setup, options, &tracer, background, pixel, progress)
+    with_kernel!(options.kernel, K => match tracer.shadow_rays() {
+        true => {
+            let span = |first: usize, y: usize, tile, out: &mut [[u8; 3]]| {
+                span_bytes::<K, B>(setup, &tracer, |i| first + i, y, tile, out);
+            };
+            each_span(setup, options, &tracer, background, span, progress)
+        }
+        false => {
+            let pixels = |first: usize, y: usize, tile, out: &mut [[u8; 3]]| {
+                for (x, out) in (first..).zip(out) {
+                    *out = pixel_bytes::<K, B>(setup, &tracer, x, y, tile);
+                }
+            };
+            each_span(setup, options, &tracer, background, pixels, progress)
+        }
     })
 }
 
@@ -274,6 +288,26 @@ fn pixel_bytes<K: Kernel, B: Rulebook>(
         None => DVec3::ZERO,
     };
     setup.rules.bytes(colour)
+}
+
+/// The bytes of the pixels (`x_of(i)`, y) for i below `out`'s length (at most
+/// [`tiles::TILE`], all in the tile whose list is `tile`), traced together by
+/// [`Tracer::span`]: each pixel's bytes are [`pixel_bytes`]'s.
+#[inline(always)]
+fn span_bytes<K: Kernel, B: Rulebook>(
+    setup: &Setup,
+    tracer: &Tracer<B>,
+    x_of: impl Fn(usize) -> usize,
+    y: usize,
+    tile: Option<Tile>,
+    out: &mut [[u8; 3]],
+) {
+    let mut colours = [DVec3::ZERO; tiles::TILE];
+    let colours = &mut colours[..out.len()];
+    tracer.span::<K>(|i| setup.camera.ray(x_of(i), y), tile, colours);
+    for (colour, out) in colours.iter().zip(out) {
+        *out = setup.rules.bytes(*colour);
+    }
 }
 
 /// The rays a render of the scene casts (camera, shadow, reflected), counted by
@@ -322,15 +356,16 @@ fn each_pixel<T: Send + Clone + Default>(
     each_row(setup, options, render_row, progress)
 }
 
-/// [`each_pixel`] for the camera rays: `per_pixel(x, y, tile)` with the list of the
-/// pixel's tile, looked up once for each tile's span of a row; where the list is empty
-/// (the tile sees no object) every pixel of the span is `empty`, without a ray.
+/// [`each_pixel`] for the camera rays, a tile's span of a row at a time:
+/// `per_span(first, y, tile, out)` fills the pixels from (first, y) on with the list of
+/// their tile, looked up once for the span; where the list is empty (the tile sees no
+/// object) every pixel of the span is `empty`, without a ray.
 fn each_span<'t, T: Send + Sync + Clone + Default, B: Rulebook>(
     setup: &Setup,
     options: &Options,
     tracer: &'t Tracer<B>,
     empty: T,
-    per_pixel: impl Fn(usize, usize, Option<Tile<'t>>) -> T + Sync,
+    per_span: impl Fn(usize, usize, Option<Tile<'t>>, &mut [T]) + Sync,
     progress: &mut impl FnMut(usize),
 ) -> Vec<T> {
     let render_row = |y: usize, out: &mut [T]| {
@@ -341,9 +376,7 @@ fn each_span<'t, T: Send + Sync + Clone + Default, B: Rulebook>(
                 out.fill(empty.clone());
                 continue;
             }
-            for (x, pixel) in (first..).zip(out) {
-                *pixel = per_pixel(x, y, tile);
-            }
+            per_span(first, y, tile, out);
         }
     };
     each_row(setup, options, render_row, progress)
@@ -599,7 +632,12 @@ fn margins_of<const PATHS: bool, B: Rulebook>(
             }
             Mark::new(bytes, fragility, first)
         };
-        each_span(setup, options, &tracer, empty, per_pixel, &mut |_| {})
+        let per_span = |first: usize, y: usize, tile, out: &mut [Mark]| {
+            for (x, out) in (first..).zip(out) {
+                *out = per_pixel(x, y, tile);
+            }
+        };
+        each_span(setup, options, &tracer, empty, per_span, &mut |_| {})
     })
 }
 
@@ -608,14 +646,43 @@ fn margins_of<const PATHS: bool, B: Rulebook>(
 /// `compare --diagnose`, which tries a variant on a sample of pixels, and re-traces the
 /// pixels a variant can change, rather than render whole images. The camera rays go
 /// through the lists of the tiles the pixels fall in where they are dense enough to pay
-/// for them (`PIXELS_PER_LIST`, 8 a tile); the hierarchy is kept.
+/// for them (`PIXELS_PER_LIST`, 8 a tile); the hierarchy is kept. Where shadow rays are
+/// cast, the pixels that follow each other in `indices` within one row of one tile are
+/// traced together, a span as in `render`.
 pub fn render_pixels(scene: &Scene, options: &Options, indices: &[usize]) -> Vec<[u8; 3]> {
     // The kernel chosen once, outside the loop over the pixels (as in `render`).
-    with_kernel!(options.kernel, K => at_pixels(scene, options, indices, |setup, tracer, background, x, y| {
-        match tracer.objects.tile(x, y) {
-            Some(tile) if tile.objects.is_empty() => background,
-            tile => pixel_bytes::<K, _>(setup, tracer, x, y, tile),
+    with_kernel!(options.kernel, K => with_tracer(scene, options, indices, |setup, tracer, background, rows| {
+        let spans = tracer.shadow_rays();
+        let mut pixels = vec![background; indices.len()];
+        let mut at = 0;
+        while at < indices.len() {
+            // The pixel at `at` and those after it in its row and tile, as in `render`'s
+            // spans: at most a tile's width.
+            let (x, y) = rows.at(indices[at]);
+            let mut xs = [x; tiles::TILE];
+            let mut count = 1;
+            while count < tiles::TILE
+                && let Some(&i) = indices.get(at + count)
+                && let (next, row) = rows.at(i)
+                && row == y
+                && next / tiles::TILE == x / tiles::TILE
+            {
+                xs[count] = next;
+                count += 1;
+            }
+            let (xs, out) = (&xs[..count], &mut pixels[at..at + count]);
+            at += count;
+            match tracer.objects.tile(x, y) {
+                Some(tile) if tile.objects.is_empty() => {}
+                tile if spans => span_bytes::<K, _>(setup, tracer, |i| xs[i], y, tile, out),
+                tile => {
+                    for (&x, out) in xs.iter().zip(out) {
+                        *out = pixel_bytes::<K, _>(setup, tracer, x, y, tile);
+                    }
+                }
+            }
         }
+        pixels
     }))
 }
 
@@ -628,14 +695,39 @@ pub fn render_pixels(scene: &Scene, options: &Options, indices: &[usize]) -> Vec
 const PIXELS_PER_LIST: usize = 8;
 
 /// `per_pixel(setup, tracer, background, x, y)` for each of the pixels `indices` (output
-/// order), with a tracer with the lists of the tiles they fall in where they hold
-/// [`PIXELS_PER_LIST`] of them a tile, and the bytes of black under the rules.
+/// order), with [`with_tracer`]'s tracer.
 fn at_pixels<T>(
     scene: &Scene,
     options: &Options,
     indices: &[usize],
     per_pixel: impl Fn(&Setup, &Tracer<&Rules>, [u8; 3], usize, usize) -> T,
 ) -> Vec<T> {
+    with_tracer(
+        scene,
+        options,
+        indices,
+        |setup, tracer, background, rows| {
+            // A plain loop: as `map(..).collect()` the same tracing took some 15 % longer
+            // (a02, every pixel, 14.9 ms against 13.7 ms; `render` 12.8 ms).
+            let mut pixels = Vec::with_capacity(indices.len());
+            for &i in indices {
+                let (x, y) = rows.at(i);
+                pixels.push(per_pixel(setup, tracer, background, x, y));
+            }
+            pixels
+        },
+    )
+}
+
+/// `trace(setup, tracer, background, rows)` with a tracer with the lists of the tiles the
+/// pixels `indices` fall in where they hold [`PIXELS_PER_LIST`] of them a tile, the
+/// bytes of black under the rules and the pixels' (x, y) by their index.
+fn with_tracer<T>(
+    scene: &Scene,
+    options: &Options,
+    indices: &[usize],
+    trace: impl FnOnce(&Setup, &Tracer<&Rules>, [u8; 3], &mut Rows) -> T,
+) -> T {
     let setup = Setup::new(scene, options);
     let mut rows = Rows::new(&setup, options);
     // The tiles the pixels fall in, and whether they are dense enough for lists.
@@ -658,14 +750,7 @@ fn at_pixels<T>(
         cells.as_deref(),
     );
     let background = setup.rules.bytes(DVec3::ZERO);
-    // A plain loop: as `map(..).collect()` the same tracing took some 15 % longer (a02,
-    // every pixel, 14.9 ms against 13.7 ms; `render` 12.8 ms).
-    let mut pixels = Vec::with_capacity(indices.len());
-    for &i in indices {
-        let (x, y) = rows.at(i);
-        pixels.push(per_pixel(&setup, &tracer, background, x, y));
-    }
-    pixels
+    trace(&setup, &tracer, background, &mut rows)
 }
 
 /// A pixel's (x, y) from its index in output order, the row's division done once per

@@ -144,11 +144,11 @@ impl<'a, B: Rulebook> Objects<'a, B> {
         let (skip, least) = self.leaving(from);
         let objects = &self.scene.objects;
         let out = |index: usize| Some(index) == skip || self.hidden(index);
-        let counts = |index: usize, t: f64| t > least && self.boxes.admits(index, ray, t);
-        let test = |index: usize, rec: &mut R| match out(index) {
-            true => None,
-            false => test_and_record::<K, R>(index, &objects[index], ray, rec),
-        };
+        // The tile's loop below calls the test and the check as methods, which are
+        // inlined always: a closure called from three loops may not be, and for the
+        // camera rays its call cost the plain render some 3 % (the ambient plane).
+        let counts = |index: usize, t: f64| self.counts(index, ray, t, least);
+        let test = |index: usize, rec: &mut R| self.closest_test::<K, R>(index, skip, ray, rec);
         // A recorder of margins is told of the objects that come near the best hit too.
         let slack = 1.0 + rec.reach();
         let mut best: Option<(usize, f64)> = None;
@@ -163,9 +163,9 @@ impl<'a, B: Rulebook> Objects<'a, B> {
                 if best.is_some_and(|(_, t)| tile.nearest[index] > t * slack) {
                     break;
                 }
-                if let Some(t) = test(index, rec)
+                if let Some(t) = self.closest_test::<K, R>(index, skip, ray, rec)
                     && beats(best, index, t)
-                    && counts(index, t)
+                    && self.counts(index, ray, t, least)
                 {
                     best = Some((index, t));
                 }
@@ -184,6 +184,29 @@ impl<'a, B: Rulebook> Objects<'a, B> {
             });
         }
         best.map(|(object, t)| Hit { object, t })
+    }
+
+    /// Whether a hit on object `index` at `t` counts for [`Objects::closest`]: t above
+    /// `least` and within the object's box.
+    #[inline(always)]
+    fn counts(&self, index: usize, ray: &Ray, t: f64, least: f64) -> bool {
+        t > least && self.boxes.admits(index, ray, t)
+    }
+
+    /// `object`'s t along `ray` for [`Objects::closest`]: none for the object the ray
+    /// leaves (`skip`) and for a hidden one.
+    #[inline(always)]
+    fn closest_test<K: Kernel, R: Recorder>(
+        &self,
+        index: usize,
+        skip: Option<usize>,
+        ray: &Ray,
+        rec: &mut R,
+    ) -> Option<f64> {
+        if Some(index) == skip || self.hidden(index) {
+            return None;
+        }
+        test_and_record::<K, R>(index, &self.scene.objects[index], ray, rec)
     }
 
     /// Whether an object lies on `ray` (leaving object `from`) closer than `dist`, blocking

@@ -3,13 +3,15 @@
 //! material ([`Tracer::surface`]) beside it. The objects answer the closest hit and the
 //! shadow test ([`Objects`]); the stage (spec §7.2) and the variants' [`Rules`] are
 //! values read where each rule lives; a [`Recorder`] is told each step, one line each.
+//! A render that casts shadow rays takes the same steps a tile's span of pixels at a
+//! time ([`Tracer::span`]), each step across the span before the next.
 
 use super::objects::{From, Hit, Objects};
 use super::record::{Event, LightStep, Recorder};
 use super::shading::{Screen, material_and_pattern};
 use super::stage::{Show, Stage};
 use super::threads::Threads;
-use super::tiles::Tile;
+use super::tiles::{TILE, Tile};
 use super::variant::{Divisor, LightRules, ObjectRules, Rulebook};
 use super::{Camera, Options, object_colour};
 use crate::scene::{Light, Material, Scene};
@@ -59,6 +61,13 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
     /// What texture tile mode needs of the projection.
     pub(crate) fn screen(&self) -> Screen {
         self.screen
+    }
+
+    /// Whether the camera rays' colours need shadow rays: the stage casts them and the
+    /// scene has a light. [`Tracer::span`] pays where they are (a pixel waits on the
+    /// chain from its hit to its shadow ray's walk), not where they are not.
+    pub(crate) fn shadow_rays(&self) -> bool {
+        self.show.is_none() && self.stage.shadows() && !self.scene.lights.is_empty()
     }
 
     /// The colour of a camera ray (with its tile's list, [`Objects::tile`]): the stage's
@@ -160,6 +169,137 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
         colour
     }
 
+    /// The colours `out` of the camera rays `ray_of(i)`, i below `out`'s length, of one
+    /// span of a row (its pixels in one tile, at most [`TILE`]; a pixel whose ray is `None`
+    /// is black), each the colour [`Tracer::pixel`] gives it with no recorder: the loop of
+    /// [`Tracer::trace`], each step taken across the span before the next. At each depth,
+    /// every live ray's closest hit; then, light by light, every hit's direction to the
+    /// light, then the shadow rays, then the terms; then the divisions by the path and the
+    /// mirror rays. Each pixel gets the same operations in the same order as on its own, so
+    /// the same bytes. A pixel on its own waits on its chain of square roots and divisions,
+    /// from the hit point to the shadow ray; across the span the chains of neighbouring
+    /// pixels, which do not depend on each other, overlap.
+    #[inline(always)]
+    pub(crate) fn span<K: Kernel>(
+        &self,
+        ray_of: impl Fn(usize) -> Option<Ray>,
+        tile: Option<Tile>,
+        out: &mut [DVec3],
+    ) {
+        out.fill(DVec3::ZERO);
+        if self.show.is_some() {
+            for (i, out) in out.iter_mut().enumerate() {
+                if let Some(ray) = ray_of(i) {
+                    *out = self.pixel::<K>(ray, tile, &mut ());
+                }
+            }
+            return;
+        }
+        let mut paths: [Option<Path>; TILE] = [None; TILE];
+        let paths = &mut paths[..out.len()];
+        for (i, path) in paths.iter_mut().enumerate() {
+            *path = ray_of(i).map(|ray| Path {
+                ray,
+                leaves: None,
+                weight: DVec3::ONE,
+                total_dist: 0.0,
+            });
+        }
+        let bounces = self.rules.bounces();
+        for depth in 0..bounces + 1 {
+            // 1.-3. Every live path's closest hit and the surface there.
+            let mut hits: [Option<Lit>; TILE] = [None; TILE];
+            let hits = &mut hits[..paths.len()];
+            let mut live = false;
+            for (path, hit) in paths.iter_mut().zip(hits.iter_mut()) {
+                let Some(p) = path else { continue };
+                if p.total_dist > self.max_dist {
+                    *path = None;
+                    continue;
+                }
+                let from = match p.leaves {
+                    None => From::Eye(tile),
+                    Some(object) => From::Surface(object),
+                };
+                let Some(Hit { object, t }) = self.objects.closest::<K, _>(&p.ray, from, &mut ())
+                else {
+                    *path = None;
+                    continue;
+                };
+                let rules = self.rules.object(object);
+                p.total_dist += t;
+                let (surface, material) =
+                    self.surface(object, rules, &p.ray, t, p.total_dist, &mut ());
+                *hit = Some(Lit {
+                    object,
+                    rules,
+                    t,
+                    surface,
+                    material,
+                    intensity: material.ambient,
+                });
+                live = true;
+            }
+            if !live {
+                break;
+            }
+            // 4. The ambient, and 5. every light's diffuse term.
+            if self.stage.lights() {
+                for (light, lamp) in self.scene.lights.iter().enumerate() {
+                    self.light_span::<K>(light, lamp, hits);
+                }
+            }
+            // 6. I / total_dist, and 7. the mirror.
+            for ((path, hit), colour) in paths.iter_mut().zip(hits.iter()).zip(out.iter_mut()) {
+                let (Some(p), Some(h)) = (path.as_mut(), hit) else {
+                    continue;
+                };
+                let seen = h.intensity / self.divisor(p.total_dist, h.t);
+                *colour += p.weight * seen;
+                let mirror = match depth == bounces || !self.reflects(h.rules, &h.material) {
+                    true => None,
+                    false => mirror(&p.ray, &h.surface),
+                };
+                let Some(mirror) = mirror else {
+                    *path = None;
+                    continue;
+                };
+                p.weight *= h.material.specular;
+                p.ray = mirror;
+                p.leaves = Some(h.object);
+            }
+        }
+    }
+
+    /// Step 5 of [`Tracer::span`] for one light: every hit's direction to it, then the
+    /// shadow rays, then the terms, each added to its hit's intensity.
+    #[inline(always)]
+    fn light_span<K: Kernel>(&self, light: usize, lamp: &Light, hits: &mut [Option<Lit>]) {
+        let rules = self.rules.light(light);
+        let mut towards: [Option<Towards>; TILE] = [None; TILE];
+        let towards = &mut towards[..hits.len()];
+        for (hit, towards) in hits.iter().zip(towards.iter_mut()) {
+            if let Some(h) = hit.as_ref().filter(|h| !h.rules.unlit()) {
+                *towards = self.towards(lamp, rules, &h.surface, &h.material, &mut ());
+            }
+        }
+        for (hit, towards) in hits.iter().zip(towards.iter_mut()) {
+            if let (Some(h), Some(to)) = (hit, &towards)
+                && self.shadowed::<K>(rules, h.object, to, &mut ())
+            {
+                *towards = None;
+            }
+        }
+        for (hit, towards) in hits.iter_mut().zip(towards.iter()) {
+            if let Some(h) = hit {
+                h.intensity += match towards {
+                    Some(to) => term(lamp, rules, &h.material, to),
+                    None => DVec3::ZERO,
+                };
+            }
+        }
+    }
+
     /// Where `ray` meets `object` at `t`: the point, the normal (as computed, spec §4.4;
     /// turned toward the ray under facing-normals, reversed under flipped-normal) and the
     /// material there (tiles, textures, shaders).
@@ -206,13 +346,34 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
         material: &Material,
         rec: &mut impl Recorder,
     ) -> DVec3 {
+        let Some(towards) = self.towards(light, rules, surface, material, rec) else {
+            return DVec3::ZERO;
+        };
+        if self.shadowed::<K>(rules, object, &towards, rec) {
+            return DVec3::ZERO;
+        }
+        term(light, rules, material, &towards)
+    }
+
+    /// The light as the hit sees it: the shadow ray toward it, its distance and cos θ,
+    /// where the material scatters light, the light is on, faces the surface and its
+    /// beam reaches it; `None` where the term is zero for one of those reasons.
+    #[inline(always)]
+    fn towards(
+        &self,
+        light: &Light,
+        rules: LightRules,
+        surface: &Surface,
+        material: &Material,
+        rec: &mut impl Recorder,
+    ) -> Option<Towards> {
         if material.diffuse == DVec3::ZERO {
             rec.record(|| Event::Light(LightStep::NoDiffuse));
-            return DVec3::ZERO;
+            return None;
         }
         if rules.off() {
             rec.record(|| Event::Light(LightStep::Off));
-            return DVec3::ZERO;
+            return None;
         }
         let to_light = light.location - surface.point;
         let dist = to_light.length();
@@ -220,38 +381,49 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
         // direction: no contribution rather than a NaN.
         if dist.is_nan() || dist <= 0.0 || dist.is_infinite() {
             rec.record(|| Event::Light(LightStep::NoDirection { dist }));
-            return DVec3::ZERO;
+            return None;
         }
         let u = to_light / dist;
         let cos = surface.normal.dot(u);
         rec.record(|| Event::Light(LightStep::Towards { u, dist, cos }));
         if cos.is_nan() || cos <= 0.0 {
-            return DVec3::ZERO;
+            return None;
         }
         if let Some(beam) = &light.beam {
             let along = (-u).dot(beam.direction);
             let lit = along > beam.cos_limit;
             rec.record(|| Event::Light(LightStep::Spot { along, lit }));
             if !lit {
-                return DVec3::ZERO;
+                return None;
             }
         }
-        if self.stage.shadows() && !rules.unshadowed() {
-            let shadow = Ray {
+        Some(Towards {
+            shadow: Ray {
                 base: surface.point,
                 dir: u,
-            };
-            rec.record(|| Event::Light(LightStep::ShadowRay { ray: shadow }));
-            if self.objects.blocked::<K, _>(&shadow, object, dist, rec) {
-                return DVec3::ZERO;
-            }
+            },
+            dist,
+            cos,
+        })
+    }
+
+    /// Whether an object blocks the shadow ray toward the light, where the stage casts
+    /// shadow rays and no variant stops this one.
+    #[inline(always)]
+    fn shadowed<K: Kernel>(
+        &self,
+        rules: LightRules,
+        object: usize,
+        towards: &Towards,
+        rec: &mut impl Recorder,
+    ) -> bool {
+        if !self.stage.shadows() || rules.unshadowed() {
+            return false;
         }
-        let falloff = if rules.square_falloff() {
-            dist * dist
-        } else {
-            dist
-        };
-        material.diffuse * light.emissivity * (cos / falloff)
+        let shadow = &towards.shadow;
+        rec.record(|| Event::Light(LightStep::ShadowRay { ray: *shadow }));
+        self.objects
+            .blocked::<K, _>(shadow, object, towards.dist, rec)
     }
 
     /// What step 6 of spec §4.2 divides by: the path's length, or under a variant this
@@ -297,4 +469,64 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
         rec.record(|| Event::Shown { show, colour });
         colour
     }
+}
+
+/// A ray of [`Tracer::span`] between its bounces: the ray about to be traced, the object
+/// it leaves (none for the camera ray), the product of the mirrors' speculars so far and
+/// the path's length.
+#[derive(Clone, Copy)]
+struct Path {
+    ray: Ray,
+    leaves: Option<usize>,
+    weight: DVec3,
+    total_dist: f64,
+}
+
+/// A hit of [`Tracer::span`], with what its shading needs.
+#[derive(Clone, Copy)]
+struct Lit {
+    object: usize,
+    rules: ObjectRules,
+    t: f64,
+    surface: Surface,
+    material: Material,
+    /// The ambient, then plus each light's term in turn.
+    intensity: DVec3,
+}
+
+/// A light as a hit sees it (spec §4.3): the shadow ray from the hit toward it (its
+/// direction the unit vector u), the light's distance, and cos θ against the normal.
+/// [`Tracer::span`] keeps the ray here from the direction's step to the shadow rays':
+/// a ray put together just before its walk was read back before its stores had
+/// landed, a stall that cost more than the staging saved.
+#[derive(Clone, Copy)]
+struct Towards {
+    shadow: Ray,
+    dist: f64,
+    cos: f64,
+}
+
+/// The light's term once it reaches the hit: diffuse × emissivity × cos θ / dist (or
+/// dist² under square-falloff).
+#[inline(always)]
+fn term(light: &Light, rules: LightRules, material: &Material, towards: &Towards) -> DVec3 {
+    let Towards { dist, cos, .. } = *towards;
+    let falloff = if rules.square_falloff() {
+        dist * dist
+    } else {
+        dist
+    };
+    material.diffuse * light.emissivity * (cos / falloff)
+}
+
+/// The mirror ray from the hit (spec §4.5): R = D - 2 (D·N) N, made unit; `None` when it
+/// has no direction.
+#[inline(always)]
+fn mirror(ray: &Ray, surface: &Surface) -> Option<Ray> {
+    let d = ray.dir;
+    let dir = unit(d - 2.0 * d.dot(surface.normal) * surface.normal)?;
+    Some(Ray {
+        base: surface.point,
+        dir,
+    })
 }
