@@ -155,15 +155,11 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
             if depth == bounces || !self.reflects(rules, &material) {
                 break;
             }
-            let d = ray.dir;
-            let Some(dir) = unit(d - 2.0 * d.dot(surface.normal) * surface.normal) else {
+            let Some(mirror) = mirror(&ray, &surface) else {
                 break;
             };
             weight *= material.specular;
-            ray = Ray {
-                base: surface.point,
-                dir,
-            };
+            ray = mirror;
             from = From::Surface(object);
         }
         colour
