@@ -143,7 +143,7 @@ impl<'a, B: Rulebook> Objects<'a, B> {
     ) -> Option<Hit> {
         let (skip, least) = self.leaving(from);
         let objects = &self.scene.objects;
-        let out = |index: usize| Some(index) == skip || self.hidden(index);
+        let out = |index: usize| self.out_of_closest(index, skip);
         // The tile's loop below calls the test and the check as methods, which are
         // inlined always: a closure called from three loops may not be, and for the
         // camera rays its call cost the plain render some 3 % (the ambient plane).
@@ -193,8 +193,15 @@ impl<'a, B: Rulebook> Objects<'a, B> {
         t > least && self.boxes.admits(index, ray, t)
     }
 
-    /// `object`'s t along `ray` for [`Objects::closest`]: none for the object the ray
-    /// leaves (`skip`) and for a hidden one.
+    /// Whether object `index` is out of [`Objects::closest`]'s tests: the object the ray
+    /// leaves (`skip`), or a hidden one.
+    #[inline(always)]
+    fn out_of_closest(&self, index: usize, skip: Option<usize>) -> bool {
+        Some(index) == skip || self.hidden(index)
+    }
+
+    /// `object`'s t along `ray` for [`Objects::closest`]: none for an object out of its
+    /// tests ([`Objects::out_of_closest`]).
     #[inline(always)]
     fn closest_test<K: Kernel, R: Recorder>(
         &self,
@@ -203,7 +210,7 @@ impl<'a, B: Rulebook> Objects<'a, B> {
         ray: &Ray,
         rec: &mut R,
     ) -> Option<f64> {
-        if Some(index) == skip || self.hidden(index) {
+        if self.out_of_closest(index, skip) {
             return None;
         }
         test_and_record::<K, R>(index, &self.scene.objects[index], ray, rec)

@@ -183,6 +183,8 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
         out: &mut [DVec3],
     ) {
         out.fill(DVec3::ZERO);
+        // Not reached from the renders (`shadow_rays` is false under `--show`): kept so
+        // that a span is right for any caller.
         if self.show.is_some() {
             for (i, out) in out.iter_mut().enumerate() {
                 if let Some(ray) = ray_of(i) {
