@@ -190,33 +190,47 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 }
 
 /// The bytes each object of a loaded scene takes, by kind: an object is its shape (as
-/// large as the largest kind inline; the general `QUADRIC` and a rotation are boxed),
-/// its material and its pattern (a tiled plane's second material boxed).
+/// large as the largest kind held in place; the rarer kinds are boxed), a shared pointer
+/// to its look (material and pattern) and its line.
 fn object_sizes() -> String {
-    use legacy_rt::scene::{Material, Object, Pattern};
+    use legacy_rt::scene::{Look, Material, Object, Pattern};
     use legacy_rt::shapes::*;
     use std::mem::size_of;
+    let boxed = size_of::<Box<Sphere>>();
+    let matrix = size_of::<glam::DMat3>();
     let kinds = [
-        ("sphere (13, 19)", size_of::<Sphere>()),
-        ("plane (14, 20)", size_of::<Plane>()),
-        ("finite plane (15, 17)", size_of::<FinitePlane>()),
-        ("tiled plane (16)", size_of::<PlaneFrame>()),
-        ("paraboloid (21)", size_of::<Paraboloid>()),
-        ("cylinder (22)", size_of::<Cylinder>()),
-        ("cone (23)", size_of::<Cone>()),
-        ("hyperboloid (24)", size_of::<Hyperboloid>()),
-        ("QUADRIC (boxed)", size_of::<Quadric>()),
+        ("sphere (13, 19)", size_of::<Sphere>(), 0),
+        ("plane (14, 20)", size_of::<Plane>(), 0),
+        (
+            "tiled plane (16), its matrix boxed",
+            size_of::<PlaneFrame>(),
+            matrix,
+        ),
+        (
+            "finite plane (15, 17), boxed",
+            boxed,
+            size_of::<FinitePlane>() + matrix,
+        ),
+        ("paraboloid (21), boxed", boxed, size_of::<Paraboloid>()),
+        ("cylinder (22), boxed", boxed, size_of::<Cylinder>()),
+        ("cone (23), boxed", boxed, size_of::<Cone>()),
+        ("hyperboloid (24), boxed", boxed, size_of::<Hyperboloid>()),
+        ("QUADRIC, boxed", boxed, size_of::<Quadric>()),
     ];
     let mut out = format!(
-        "\nMemory per object: {} bytes (the shape {}, the material {}, the pattern {}, \
-         the kind and the line). The shapes themselves:\n\n| kind | bytes |\n|---|---:|\n",
+        "\nMemory per object: {} bytes whatever its kind: the shape {} (the largest kind held \
+         in place, and its tag), a shared pointer to its look and its line. The look (the \
+         material {} and the pattern {}, {} bytes) is held once for a run of records with \
+         the same plain material. The shapes:\n\n| kind | in place | on the heap |\n\
+         |---|---:|---:|\n",
         size_of::<Object>(),
         size_of::<Shape>(),
         size_of::<Material>(),
-        size_of::<Pattern>()
+        size_of::<Pattern>(),
+        size_of::<Look>(),
     );
-    for (kind, bytes) in kinds {
-        out += &format!("| {kind} | {bytes} |\n");
+    for (kind, bytes, heap) in kinds {
+        out += &format!("| {kind} | {bytes} | {heap} |\n");
     }
     out + "\nA rotated quadric 21-24 adds its rotation (144 bytes, boxed); an unrotated \
            one, and every sphere, does not. `bench/load.sh` loads a million records."

@@ -90,7 +90,8 @@ fn legend(scene: &legacy_rt::Scene, options: &legacy_rt::Options) {
                 let [r, g, b] = object_colour(index).to_array().map(|c| (c * 255.0) as u8);
                 say(&format!(
                     "  {r:3} {g:3} {b:3} -> {} (line {})",
-                    object.kind, object.line
+                    object.kind(),
+                    object.line
                 ));
             }
             say("    0   0   0 -> nothing hit");

@@ -486,7 +486,7 @@ fn every_nth(mask: &[u64], pixels: usize, set: bool, every: usize) -> Vec<usize>
 fn subject(scene: &Scene, variants: &[Variant]) -> Option<String> {
     let line = variants.iter().find_map(|v| v.line)?;
     let object = scene.objects.iter().find(|o| o.line == line);
-    let kind = object.map_or("light", |o| o.kind);
+    let kind = object.map_or("light", |o| o.kind());
     Some(format!("{kind} (line {line})"))
 }
 
@@ -531,8 +531,8 @@ fn may_change(scene: &Scene, options: &Options, variant: &Variant) -> bool {
 /// tiles', is not zero (spec §4.5).
 fn reflects(object: &Object) -> bool {
     let mirror = |m: &Material| m.specular != glam::DVec3::ZERO;
-    mirror(&object.material)
-        || matches!(&object.pattern, Pattern::Tiles { background, .. } if mirror(background))
+    mirror(&object.look.material)
+        || matches!(&object.look.pattern, Pattern::Tiles { background, .. } if mirror(background))
 }
 
 /// The edits of one record on the objects and the lights most involved in the sampled
@@ -622,7 +622,7 @@ fn focus(scene: &Scene, paths: &[render::Involved]) -> Option<Focus> {
     let object = &scene.objects[index];
     let share = |k: usize| k as f64 / n as f64;
     Some(Focus {
-        object: format!("{} (line {})", object.kind, object.line),
+        object: format!("{} (line {})", object.kind(), object.line),
         index,
         share: n as f64 / paths.len().max(1) as f64,
         camera: share(camera),

@@ -510,7 +510,7 @@ fn group(scene: &Scene, counts: &[usize]) -> Vec<Group> {
         .map(|(index, &pixels)| {
             let object = scene.objects.get(index);
             Group {
-                object: object.map_or("background", |o| o.kind).to_string(),
+                object: object.map_or("background", |o| o.kind()).to_string(),
                 line: object.map(|o| o.line),
                 index: object.map(|_| index),
                 pixels,

@@ -361,7 +361,7 @@ impl<'s, 'a, const PATHS: bool> Margins<'s, 'a, PATHS> {
         let q = surface.plane_xy;
         // The distance from `a` to the nearest integer, in units of `cell`.
         let edge = |a: f64, cell: f64| (a - a.round()).abs() * cell.abs();
-        let margin = match &record.pattern {
+        let margin = match &record.look.pattern {
             Pattern::Plain => f64::INFINITY,
             Pattern::Tiles { tile, .. } => {
                 // trunc(10000 + q/w): the 10000 rounds with q.

@@ -60,13 +60,13 @@ pub(crate) fn material_and_pattern(
     surface: &Surface,
     screen: &Screen,
 ) -> (Material, PatternNote) {
-    match &object.pattern {
-        Pattern::Plain => (object.material, PatternNote::Plain),
+    match &object.look.pattern {
+        Pattern::Plain => (object.look.material, PatternNote::Plain),
         Pattern::Tiles { tile, background } => {
             let (relx, rely) = tile_index(surface.plane_xy, *tile);
             let foreground = is_foreground(relx, rely);
             let material = if foreground {
-                object.material
+                object.look.material
             } else {
                 **background
             };
@@ -86,21 +86,21 @@ pub(crate) fn material_and_pattern(
             let [r, g, b] = texture.texels[(row * texture.width as i64 + col) as usize];
             let value = DVec3::new(r.into(), g.into(), b.into()) / 255.0;
             let material = Material {
-                ambient: object.material.ambient * value,
-                diffuse: object.material.diffuse * value,
-                specular: object.material.specular,
+                ambient: object.look.material.ambient * value,
+                diffuse: object.look.material.diffuse * value,
+                specular: object.look.material.specular,
             };
             (material, PatternNote::Texel { col, row, value })
         }
         Pattern::Shader { shader, origin } => {
             let v = surface.point - *origin;
             let (ambient, value) = match shader {
-                Shader::Stripes => stripes(object.material.ambient, v),
-                Shader::ColourWheel => colour_wheel(object.material.ambient, v),
+                Shader::Stripes => stripes(object.look.material.ambient, v),
+                Shader::ColourWheel => colour_wheel(object.look.material.ambient, v),
             };
             let material = Material {
                 ambient,
-                ..object.material
+                ..object.look.material
             };
             let shader = *shader;
             (material, PatternNote::Shader { shader, value })

@@ -69,7 +69,7 @@ fn vector(v: DVec3) -> String {
 /// How an object is named in the readable trace: its kind and the line of its type code.
 pub(crate) fn object_name(scene: &Scene, index: usize) -> String {
     let object = &scene.objects[index];
-    format!("{} (line {})", object.kind, object.line)
+    format!("{} (line {})", object.kind(), object.line)
 }
 
 /// How a light is named: its number (from 1), kind and line.

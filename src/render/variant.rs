@@ -15,6 +15,7 @@ use crate::shapes::kernel::KernelChoice;
 use crate::shapes::{Cone, Shape};
 use glam::DVec3;
 use std::borrow::Cow;
+use std::sync::Arc;
 
 /// The ε of `shadow-epsilon` unless another is given (`shadow-epsilon=1e-3`).
 pub const DEFAULT_EPSILON: f64 = 1e-6;
@@ -596,7 +597,7 @@ pub fn check_scopes(options: &Options, scene: &Scene) -> Result<(), String> {
         if fits.contains(&line) {
             continue;
         }
-        let there = (scene.objects.iter().map(|o| (o.line, o.kind)))
+        let there = (scene.objects.iter().map(|o| (o.line, o.kind())))
             .chain(scene.lights.iter().map(|l| (l.line, "light")))
             .find(|&(at, _)| at == line)
             .map(|(_, kind)| format!("line {line} starts a {kind}"))
@@ -924,17 +925,18 @@ impl Rules {
             for object in objects {
                 match variant.kind {
                     Kind::TileParity => {
-                        if let Pattern::Tiles { background, .. } = &mut object.pattern {
+                        let look = Arc::make_mut(&mut object.look);
+                        if let Pattern::Tiles { background, .. } = &mut look.pattern {
                             // Even relx + rely now picks the first material: the same as
                             // swapping the two materials under the odd rule.
-                            std::mem::swap(&mut object.material, &mut **background);
+                            std::mem::swap(&mut look.material, &mut **background);
                         }
                     }
                     Kind::ConeScale => {
                         if let Shape::Cone(cone) = &mut object.shape {
                             let size = cone.size;
                             let frame = cone.equation.frame.clone();
-                            *cone = Cone::with_k(frame, size, size.radius.powi(2) / size.height);
+                            **cone = Cone::with_k(frame, size, size.radius.powi(2) / size.height);
                         }
                     }
                     Kind::NoZRule => {

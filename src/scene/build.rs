@@ -1,7 +1,9 @@
 //! Records to typed objects: each record kind's numbers go to its shape's constructor, and
 //! a constructor's complaint is traced back to the number that caused it.
 
-use super::{Beam, Files, Light, Material, Object, Pattern, Scene, Shader, Texture, TextureMode};
+use super::{
+    Beam, Files, Light, Look, Material, Object, Pattern, Scene, Shader, Texture, TextureMode,
+};
 use crate::error::{MeaningError, Pending};
 use crate::scene_file::layout::label::*;
 use crate::scene_file::{Group, GroupData, Record, Sink};
@@ -108,17 +110,21 @@ impl Sink for Builder<'_> {
         self.keep(result);
     }
 
-    fn record(&mut self, record: Record) {
+    fn record(&mut self, record: &Record) {
         if self.error.is_some() {
             return;
         }
         let located = |invalid| {
             let (name, line) = (record.layout.name, record.line);
-            locate(&record, invalid).with_note(format!("the {name} record starts on line {line}"))
+            locate(record, invalid).with_note(format!("the {name} record starts on line {line}"))
         };
         let result = match record.layout.code {
-            10 | 11 => light(&record).map(|light| self.scene.lights.push(light)),
-            _ => object(&record, self.files).map(|object| self.scene.objects.push(object)),
+            10 | 11 => light(record).map(|light| self.scene.lights.push(light)),
+            _ => {
+                let previous = self.scene.objects.last().map(|o| &o.look);
+                let object = object(record, self.files, previous);
+                object.map(|object| self.scene.objects.push(object))
+            }
         };
         self.keep(result.map_err(located));
     }
@@ -252,7 +258,13 @@ fn shader(record: &Record) -> Result<Shader, Refusal> {
     }
 }
 
-fn object(record: &Record, files: &dyn Files) -> Result<Object, Refusal> {
+/// The object of `record`, sharing the look of the object before (`previous`) when the
+/// two have the same plain material.
+fn object(
+    record: &Record,
+    files: &dyn Files,
+    previous: Option<&Arc<Look>>,
+) -> Result<Object, Refusal> {
     let name = record.layout.name;
     let mut pattern = Pattern::Plain;
     let refused = Refusal::of_shape(record.layout.code);
@@ -288,7 +300,7 @@ fn object(record: &Record, files: &dyn Files) -> Result<Object, Refusal> {
             if record.layout.code == 17 {
                 pattern = texture(record, plane.size, files)?;
             }
-            Shape::FinitePlane(plane)
+            Shape::FinitePlane(Box::new(plane))
         }
         16 => {
             let (normal, point, xdir) = frame_vectors(record)?;
@@ -317,13 +329,17 @@ fn object(record: &Record, files: &dyn Files) -> Result<Object, Refusal> {
                 [VERTEX, BASE, APEX, WAIST_CENTRE][code as usize - 21],
             )?;
             match code {
-                21 => Shape::Paraboloid(Paraboloid::new(first, line, r, h).map_err(&refused)?),
-                22 => Shape::Cylinder(Cylinder::new(first, line, r, h).map_err(&refused)?),
-                23 => Shape::Cone(Cone::new(first, line, r, h).map_err(&refused)?),
+                21 => Shape::Paraboloid(Box::new(
+                    Paraboloid::new(first, line, r, h).map_err(&refused)?,
+                )),
+                22 => Shape::Cylinder(Box::new(
+                    Cylinder::new(first, line, r, h).map_err(&refused)?,
+                )),
+                23 => Shape::Cone(Box::new(Cone::new(first, line, r, h).map_err(&refused)?)),
                 _ => {
                     let waist = scalar(record, WAIST_RADIUS)?;
                     let shape = Hyperboloid::new(first, line, r, h, waist).map_err(&refused)?;
-                    Shape::Hyperboloid(shape)
+                    Shape::Hyperboloid(Box::new(shape))
                 }
             }
         }
@@ -335,11 +351,19 @@ fn object(record: &Record, files: &dyn Files) -> Result<Object, Refusal> {
             Shape::Quadric(Box::new(Quadric::new(coefficients).map_err(&refused)?))
         }
     };
-    Ok(Object {
-        shape,
+    let look = Look {
         material: material(record, [AMBIENT, DIFFUSE, SPECULAR])?,
         pattern,
-        kind: name,
+    };
+    let look = match previous {
+        Some(shared) if matches!(look.pattern, Pattern::Plain) && **shared == look => {
+            Arc::clone(shared)
+        }
+        _ => Arc::new(look),
+    };
+    Ok(Object {
+        shape,
+        look,
         line: record.line,
     })
 }

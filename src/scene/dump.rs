@@ -80,8 +80,8 @@ impl Dump {
     }
 
     fn object(&mut self, object: &Object) {
-        let _ = writeln!(self.0, "line {}: {}", object.line, object.kind);
-        self.material("", &object.material);
+        let _ = writeln!(self.0, "line {}: {}", object.line, object.kind());
+        self.material("", &object.look.material);
         match &object.shape {
             Shape::Sphere(s) => {
                 self.vector("centre", s.centre);
@@ -95,13 +95,13 @@ impl Dump {
             Shape::FinitePlane(s) => {
                 self.vector("normal", s.frame.plane.normal);
                 self.vector("point", s.frame.plane.point);
-                self.matrix("frame", s.frame.local_from_world);
+                self.matrix("frame", *s.frame.local_from_world);
                 self.row("size", &s.size.to_array());
             }
             Shape::TiledPlane(s) => {
                 self.vector("normal", s.plane.normal);
                 self.vector("point", s.plane.point);
-                self.matrix("frame", s.local_from_world);
+                self.matrix("frame", *s.local_from_world);
             }
             Shape::Paraboloid(s) => {
                 self.axis("vertex", &s.equation.frame);
@@ -136,7 +136,7 @@ impl Dump {
                 }
             }
         }
-        match &object.pattern {
+        match &object.look.pattern {
             Pattern::Plain => {}
             Pattern::Tiles { tile, background } => {
                 self.row("tile size", &tile.to_array());

@@ -168,19 +168,52 @@ pub enum Pattern {
     },
 }
 
-/// A visible object: a shape, its material and how the material varies.
+/// What a surface looks like: its material and how the material varies over it.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Object {
-    /// The geometry: what a ray hits and the normal there.
-    pub shape: Shape,
+pub struct Look {
     /// The material (for tiled planes, the foreground tiles').
     pub material: Material,
     /// Tiles, texture, shader or nothing.
     pub pattern: Pattern,
-    /// The record's name: "sphere", "tiled plane", ...
-    pub kind: &'static str,
+}
+
+/// A visible object: a shape and its look, 80 bytes whatever its kind (a million
+/// records must fit a laptop's memory).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Object {
+    /// The geometry: what a ray hits and the normal there.
+    pub shape: Shape,
+    /// Its material and pattern, shared with the record before when the two are the same
+    /// plain material (a generated scene's thousand spheres of one colour hold one copy).
+    /// A scoped variant that changes it changes only its own copy (`Arc::make_mut`).
+    pub look: Arc<Look>,
     /// The line of its type code.
     pub line: usize,
+}
+
+impl Object {
+    /// The record's name: "sphere", "tiled plane", ...: its type code's, which the shape
+    /// and the pattern tell (a shader makes a sphere or plane 19 or 20, a texture makes a
+    /// finite plane 17).
+    pub fn kind(&self) -> &'static str {
+        use crate::scene_file::layout;
+        let shaded = matches!(self.look.pattern, Pattern::Shader { .. });
+        let code = match &self.shape {
+            Shape::Sphere(_) if shaded => 19,
+            Shape::Sphere(_) => 13,
+            Shape::Plane(_) if shaded => 20,
+            Shape::Plane(_) => 14,
+            Shape::FinitePlane(_) if matches!(self.look.pattern, Pattern::Texture { .. }) => 17,
+            Shape::FinitePlane(_) => 15,
+            Shape::TiledPlane(_) => 16,
+            Shape::Paraboloid(_) => 21,
+            Shape::Cylinder(_) => 22,
+            Shape::Cone(_) => 23,
+            Shape::Hyperboloid(_) => 24,
+            Shape::Quadric(_) => return layout::QUADRIC.name,
+        };
+        layout::of_code(code).map_or(layout::QUADRIC.name, |layout| layout.name)
+    }
 }
 
 /// A validated scene: header, lights and objects, each in file order.
@@ -214,6 +247,35 @@ impl Scene {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn every_objects_kind_is_its_records_name() {
+        // One record of every object code, each named by the reader's layout table; the
+        // object's kind is derived from its shape and pattern instead.
+        let m = "1 1 1\n1 1 1\n0 0 0\n";
+        let records = [
+            format!("13\n{m}0 0 -5\n1\n"),
+            format!("14\n{m}0 1 0\n0 -2 0\n"),
+            format!("15\n{m}0 0 1\n0 0 -9\n1 0 0\n2 2\n"),
+            format!("16\n{m}0 1 0\n0 -3 0\n1 0 0\n1 1\n{m}"),
+            format!("17\n{m}0 0 1\n0 0 -9\n1 0 0\n2 2\nt.ppm\n1\n"),
+            format!("19\n{m}0 0 -5\n1\n0\n"),
+            format!("20\n{m}0 1 0\n0 -2 0\n1\n"),
+            format!("21\n{m}0 0 -5\n0 1 0\n1 1\n"),
+            format!("22\n{m}0 0 -5\n0 1 0\n1 1\n"),
+            format!("23\n{m}0 0 -5\n0 1 0\n1 1\n"),
+            format!("24\n{m}0 0 -5\n0 1 0\n1 1\n0.5\n"),
+            format!("QUADRIC 1 0 0 0 1 0 0 1 0 -1\n{m}"),
+        ];
+        let text = format!("8 6\n0 0 3\n{}", records.concat());
+        let files = InMemory::from([("t.ppm".to_string(), b"P6\n1 1\n255\n\x10\x20\x30".to_vec())]);
+        let scene = load_with(&text, &files).unwrap();
+        let read = crate::scene_file::read(&text).unwrap();
+        let names: Vec<&str> = read.records.iter().map(|r| r.layout.name).collect();
+        let kinds: Vec<&str> = scene.objects.iter().map(Object::kind).collect();
+        assert_eq!(kinds, names);
+        assert_eq!(kinds.len(), 12);
+    }
 
     #[test]
     fn a_syntax_error_anywhere_comes_before_an_earlier_records_meaning_error() {

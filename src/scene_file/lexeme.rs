@@ -22,8 +22,13 @@ fn is_line_space(c: char) -> bool {
 /// Skips any whitespace, newlines included (what `scanf` does before a conversion).
 /// (Written with `str` methods: it runs between every two numbers of a scene.)
 pub fn blank(input: &str) -> IResult<&str, &str> {
-    let rest = input.trim_start_matches(is_space);
-    Ok((rest, &input[..input.len() - rest.len()]))
+    // Every space of `is_space` is one ASCII byte, so a byte scan stops where the
+    // character scan would, and on a character boundary.
+    let spaces = (input.bytes())
+        .take_while(|&b| b.is_ascii() && is_space(char::from(b)))
+        .count();
+    let (blank, rest) = input.split_at(spaces);
+    Ok((rest, blank))
 }
 
 /// Skips whitespace up to, not past, the end of the line.

@@ -140,8 +140,8 @@ static HEADER: &Layout = &Layout {
 pub(crate) trait Sink {
     /// The header's two groups: world window and viewpoint.
     fn header(&mut self, window: Group, viewpoint: Group);
-    /// The next record.
-    fn record(&mut self, record: Record);
+    /// The next record, lent: the reader reuses its groups' storage for the one after.
+    fn record(&mut self, record: &Record);
 }
 
 /// Collects everything: [`read`].
@@ -154,8 +154,8 @@ impl Sink for Collect {
         self.0 = Some((window, viewpoint));
     }
 
-    fn record(&mut self, record: Record) {
-        self.1.push(record);
+    fn record(&mut self, record: &Record) {
+        self.1.push(record.clone());
     }
 }
 
@@ -185,6 +185,7 @@ pub(crate) fn read_into(text: &str, sink: &mut impl Sink) -> Result<Option<Strin
         rest: text,
         counted: std::cell::Cell::new((0, 1)),
         split: None,
+        spare: Vec::new(),
     };
     // A group that ran on across a line break is legal (scanf reads that way), but it is
     // also what a missing number looks like, and the error then shows up records later.
@@ -195,7 +196,8 @@ pub(crate) fn read_into(text: &str, sink: &mut impl Sink) -> Result<Option<Strin
 }
 
 fn read_all(reader: &mut Reader<'_>, sink: &mut impl Sink) -> Result<Option<String>, Pending> {
-    let header = reader.groups(HEADER, 0)?;
+    let mut header = Vec::new();
+    reader.groups(HEADER, 0, &mut header)?;
     let [window, viewpoint]: [Group; 2] = header.try_into().map_err(|_| {
         // The header's layout has two groups, each read or an error.
         let (record, label) = ("header", layout::label::WINDOW);
@@ -215,7 +217,9 @@ fn read_all(reader: &mut Reader<'_>, sink: &mut impl Sink) -> Result<Option<Stri
                 SyntaxError::TooManyRecords { limit },
             ));
         }
-        sink.record(reader.record()?);
+        let record = reader.record()?;
+        sink.record(&record);
+        reader.spare = record.groups;
         records += 1;
     }
     Ok(reader.split.take())
@@ -229,6 +233,9 @@ struct Reader<'a> {
     counted: std::cell::Cell<(usize, usize)>,
     /// A description of the first group whose numbers ran across a line break.
     split: Option<String>,
+    /// The last record's groups, emptied and refilled for the next: one allocation for
+    /// a scene rather than one a record.
+    spare: Vec<Group>,
 }
 
 impl<'a> Reader<'a> {
@@ -238,11 +245,9 @@ impl<'a> Reader<'a> {
 
     fn line_of(&self, offset: usize) -> usize {
         let (known, line) = self.counted.get();
+        // A sum rather than `filter().count()`: the compiler turns it into vector code.
         let newlines = |from: usize, to: usize| {
-            self.text.as_bytes()[from..to]
-                .iter()
-                .filter(|&&b| b == b'\n')
-                .count()
+            (self.text.as_bytes()[from..to].iter()).fold(0, |n, &b| n + usize::from(b == b'\n'))
         };
         let line = match offset >= known {
             true => line + newlines(known, offset),
@@ -348,7 +353,8 @@ impl<'a> Reader<'a> {
             return Err(error);
         };
         self.skip(lexeme::comment);
-        let groups = self.groups(layout, at)?;
+        let mut groups = std::mem::take(&mut self.spare);
+        self.groups(layout, at, &mut groups)?;
         Ok(Record {
             layout,
             at,
@@ -358,8 +364,14 @@ impl<'a> Reader<'a> {
         })
     }
 
-    /// Reads the groups of a layout; `start` is where the record began, for notes.
-    fn groups(&mut self, layout: &Layout, start: usize) -> Result<Vec<Group>, Pending> {
+    /// Reads the groups of a layout into `groups` (emptied first); `start` is where the
+    /// record began, for notes.
+    fn groups(
+        &mut self,
+        layout: &Layout,
+        start: usize,
+        groups: &mut Vec<Group>,
+    ) -> Result<(), Pending> {
         let record = layout.name;
         let start_line = self.line_of(start);
         let note = |pending: Pending| {
@@ -373,7 +385,7 @@ impl<'a> Reader<'a> {
                 .with_note(format!("the {record} record starts on line {start_line}"))
                 .with_note(layout.describe())
         };
-        let mut groups = Vec::with_capacity(layout.slots.len());
+        groups.clear();
         for slot in layout.slots {
             self.skip(lexeme::blank);
             let at = self.offset();
@@ -421,7 +433,7 @@ impl<'a> Reader<'a> {
             let label = slot.label();
             groups.push(Group { label, at, data });
         }
-        Ok(groups)
+        Ok(())
     }
 }
 

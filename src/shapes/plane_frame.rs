@@ -11,8 +11,10 @@ use glam::{DMat3, DVec2, DVec3};
 pub struct PlaneFrame {
     /// The plane (unit normal, point = the frame's origin, the lower-left corner).
     pub plane: Plane,
-    /// Rows: unit x direction in the plane, n × x, n.
-    pub local_from_world: DMat3,
+    /// Rows: unit x direction in the plane, n × x, n. Boxed: a hit test reads only the
+    /// plane, and the tiled plane's frame then takes 64 bytes in place, as a plane does
+    /// (boxing the whole frame cost spec1 1.6 % more instructions).
+    pub local_from_world: Box<DMat3>,
 }
 
 impl PlaneFrame {
@@ -41,14 +43,14 @@ impl PlaneFrame {
         let rot = DMat3::from_cols(x, n.cross(x), n).transpose();
         Ok(PlaneFrame {
             plane,
-            local_from_world: rot,
+            local_from_world: Box::new(rot),
         })
     }
 
     /// (q.x, q.y) of a point of the plane.
     #[inline]
     pub fn plane_xy(&self, point: DVec3) -> DVec2 {
-        (self.local_from_world * (point - self.plane.point)).truncate()
+        (*self.local_from_world * (point - self.plane.point)).truncate()
     }
 }
 

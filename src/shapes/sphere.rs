@@ -19,7 +19,8 @@
 use super::{AxisFrame, AxisQuadric, Invalid, Parameter, RootRule, positive};
 use glam::DVec3;
 
-/// A sphere with its squared radius precomputed.
+/// A sphere with its squared radius precomputed: 40 bytes, the smallest shape, since a
+/// scene may hold a million of them. Its [`AxisQuadric`] is built when a kernel asks.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Sphere {
     /// The centre C of spec §5.2.
@@ -28,8 +29,6 @@ pub struct Sphere {
     pub radius: f64,
     /// r², the constant of the sphere's equation, exact.
     pub radius_sq: f64,
-    /// |P - C|² - r² = 0 in the form every kernel solves.
-    pub equation: AxisQuadric,
 }
 
 impl Sphere {
@@ -37,15 +36,29 @@ impl Sphere {
     /// centre, the nearer root.
     pub fn new(centre: DVec3, radius: f64, record: &'static str) -> Result<Sphere, Invalid> {
         let radius = positive(record, "radius", radius).map_err(Parameter::Radius.refuses())?;
-        let radius_sq = radius * radius;
-        let frame = AxisFrame::unrotated(centre);
-        let equation = AxisQuadric::new(frame, 1.0, 0.0, -radius_sq, RootRule::Nearer);
         Ok(Sphere {
             centre,
             radius,
-            radius_sq,
-            equation,
+            radius_sq: radius * radius,
         })
+    }
+
+    /// The box `equation().bounds()` gives, C ∓ sqrt(r²), without its general steps: with
+    /// αx = αy = αz = 1, β = 0 and no rotation, its widest radius is sqrt(r²) and its
+    /// corners are C ∓ sqrt(r²) exactly (the rotation is the identity; the sum with zero
+    /// terms is exact). A million spheres' boxes are computed before a render.
+    pub fn bounds(&self) -> Option<(DVec3, DVec3)> {
+        let r = self.radius_sq.sqrt();
+        r.is_finite().then(|| (self.centre - r, self.centre + r))
+    }
+
+    /// |P - C|² - r² = 0 in the form every kernel solves: x² + y² + z² - r² about the
+    /// centre, unrotated, the nearer root. Built from the three fields, so it is the same
+    /// equation at every call and costs a scene of spheres nothing to hold.
+    #[inline(always)]
+    pub fn equation(&self) -> AxisQuadric {
+        let frame = AxisFrame::unrotated(self.centre);
+        AxisQuadric::new(frame, 1.0, 0.0, -self.radius_sq, RootRule::Nearer)
     }
 }
 
@@ -61,9 +74,9 @@ mod tests {
     #[test]
     fn ray_through_the_centre_hits_the_near_side() {
         let ray = Ray::new(DVec3::ZERO, DVec3::NEG_Z);
-        assert_eq!(hit(&sphere().equation, &ray), Some(3.0));
+        assert_eq!(hit(&sphere().equation(), &ray), Some(3.0));
         assert_eq!(
-            sphere().equation.normal(DVec3::new(0.0, 0.0, -3.0)),
+            sphere().equation().normal(DVec3::new(0.0, 0.0, -3.0)),
             DVec3::Z
         );
     }
@@ -71,15 +84,31 @@ mod tests {
     #[test]
     fn ray_from_inside_reports_the_negative_root() {
         let ray = Ray::new(DVec3::new(0.0, 0.0, -5.0), DVec3::X);
-        assert_eq!(hit(&sphere().equation, &ray), Some(-2.0));
+        assert_eq!(hit(&sphere().equation(), &ray), Some(-2.0));
     }
 
     #[test]
     fn tangent_and_missing_rays_do_not_hit() {
         let tangent = Ray::new(DVec3::new(2.0, 0.0, 0.0), DVec3::NEG_Z);
         let away = Ray::new(DVec3::ZERO, DVec3::Y);
-        assert_eq!(hit(&sphere().equation, &tangent), None);
-        assert_eq!(hit(&sphere().equation, &away), None);
+        assert_eq!(hit(&sphere().equation(), &tangent), None);
+        assert_eq!(hit(&sphere().equation(), &away), None);
+    }
+
+    #[test]
+    fn the_box_is_the_general_quadrics_box() {
+        // Radii whose squares round (0.1, 1/3, 1e154: r² is not r times r exactly), huge
+        // and tiny ones, and centres far from the origin.
+        let radii = [0.1, 1.0 / 3.0, 2.0, 7e-155, 1e154, 3e160];
+        let centres = [DVec3::ZERO, DVec3::new(-1e12, 0.3, 5e-9), DVec3::splat(7.1)];
+        for (r, c) in radii.into_iter().flat_map(|r| centres.map(|c| (r, c))) {
+            let sphere = Sphere::new(c, r, "sphere").unwrap();
+            assert_eq!(
+                sphere.bounds(),
+                sphere.equation().bounds(),
+                "r {r}, centre {c}"
+            );
+        }
     }
 
     #[test]

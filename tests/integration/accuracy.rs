@@ -123,11 +123,11 @@ fn quadric_records_agree_with_the_dedicated_shapes() {
     {
         for case in &family.cases {
             let equation = match &case.shape {
-                Shape::Sphere(s) => &s.equation,
-                Shape::Cylinder(s) => &s.equation,
-                Shape::Cone(s) => &s.equation,
-                Shape::Paraboloid(s) => &s.equation,
-                Shape::Hyperboloid(s) => &s.equation,
+                Shape::Sphere(s) => s.equation(),
+                Shape::Cylinder(s) => s.equation.clone(),
+                Shape::Cone(s) => s.equation.clone(),
+                Shape::Paraboloid(s) => s.equation.clone(),
+                Shape::Hyperboloid(s) => s.equation.clone(),
                 _ => unreachable!(),
             };
             let exact = reference(case);
@@ -141,7 +141,7 @@ fn quadric_records_agree_with_the_dedicated_shapes() {
             if equation.value(local) <= 0.0 {
                 continue;
             }
-            let quadric = support::as_general_quadric(equation);
+            let quadric = support::as_general_quadric(&equation);
             let from_quadric = Shape::Quadric(Box::new(quadric.clone())).hit(&case.ray, Accurate);
             let dedicated = case.shape.hit(&case.ray, Accurate).unwrap();
             let Some(from_quadric) = from_quadric else {

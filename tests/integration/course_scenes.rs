@@ -31,7 +31,7 @@ fn every_course_scene_loads_and_its_dump_and_image_are_reviewed() {
 fn spec1_holds_what_the_issue_describes() {
     let Some(dir) = course_scenes() else { return };
     let scene = legacy_rt::load(&std::fs::read_to_string(dir.join("spec1.txt")).unwrap()).unwrap();
-    let kinds: Vec<_> = scene.objects.iter().map(|o| o.kind).collect();
+    let kinds: Vec<_> = scene.objects.iter().map(|o| o.kind()).collect();
     assert_eq!(kinds, ["sphere", "sphere", "tiled plane", "tiled plane"]);
     assert_eq!(scene.lights.len(), 4);
 }

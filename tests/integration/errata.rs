@@ -251,7 +251,9 @@ fn note_003_cone_normal_is_the_gradient() {
 #[test]
 fn note_003_cone_point_is_the_apex() {
     let (r, h) = (2.0, 5.0);
-    let cone = Shape::Cone(Cone::new(DVec3::new(4.0, 3.0, -4.0), DVec3::Y, r, h).unwrap());
+    let cone = Shape::Cone(Box::new(
+        Cone::new(DVec3::new(4.0, 3.0, -4.0), DVec3::Y, r, h).unwrap(),
+    ));
     let across = |height: f64| {
         let t = cone
             .hit(&ray([4.0, 3.0 + height, 6.0], [0.0, 0.0, -1.0]), Accurate)
@@ -272,7 +274,9 @@ fn note_003_hyperboloid_scale_and_centre() {
     let k = (r * r - rc * rc) / (h * h);
     let wrong_k = r * r / h;
     let centre = DVec3::new(4.0, 3.0, -4.0);
-    let shape = Shape::Hyperboloid(Hyperboloid::new(centre, DVec3::Y, r, h, rc).unwrap());
+    let shape = Shape::Hyperboloid(Box::new(
+        Hyperboloid::new(centre, DVec3::Y, r, h, rc).unwrap(),
+    ));
     let radius_at = |y: f64| {
         let t = shape
             .hit(&ray([4.0, 3.0 + y, 6.0], [0.0, 0.0, -1.0]), Accurate)
@@ -294,7 +298,9 @@ fn note_003_hyperboloid_scale_and_centre() {
 #[test]
 fn note_003_out_of_bounds_root_falls_through_to_the_other_one() {
     let (r, h) = (1.0, 2.0);
-    let cylinder = Shape::Cylinder(Cylinder::new(DVec3::ZERO, DVec3::Y, r, h).unwrap());
+    let cylinder = Shape::Cylinder(Box::new(
+        Cylinder::new(DVec3::ZERO, DVec3::Y, r, h).unwrap(),
+    ));
     // From above and to the side, steeply down: enters the infinite cylinder above the
     // rim (y > h), leaves it through the wall inside (y < h).
     let base = DVec3::new(-2.0, 5.0, 0.0);

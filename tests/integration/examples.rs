@@ -38,7 +38,7 @@ fn the_examples_cover_every_type_code_and_every_quadric_family() {
     let mut kinds = std::collections::BTreeSet::new();
     for path in scene_files(&examples) {
         let scene = legacy_rt::load(&std::fs::read_to_string(&path).unwrap()).unwrap();
-        kinds.extend(scene.objects.iter().map(|o| o.kind));
+        kinds.extend(scene.objects.iter().map(|o| o.kind()));
         for light in &scene.lights {
             kinds.insert(if light.beam.is_some() {
                 "spotlight"

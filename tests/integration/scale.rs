@@ -6,10 +6,11 @@
 //! ambient colours by s and the emissivities by s² to compensate.
 
 use legacy_rt::render::{DEFAULT_MAX_DIST, Options, render};
-use legacy_rt::scene::{Object, Pattern, Scene, load};
+use legacy_rt::scene::{Look, Object, Pattern, Scene, load};
 use legacy_rt::shapes::{
     Cone, Cylinder, FinitePlane, Hyperboloid, Paraboloid, Plane, PlaneFrame, Quadric, Shape, Sphere,
 };
+use std::sync::Arc;
 
 fn scale_shape(shape: &Shape, s: f64) -> Shape {
     let line = |irot: glam::DMat3| irot.col(1);
@@ -18,7 +19,7 @@ fn scale_shape(shape: &Shape, s: f64) -> Shape {
         Shape::Plane(x) => Shape::Plane(Plane::new(x.normal, x.point * s, "p").unwrap()),
         Shape::FinitePlane(x) => {
             let f = &x.frame;
-            Shape::FinitePlane(
+            Shape::FinitePlane(Box::new(
                 FinitePlane::new(
                     f.plane.normal,
                     f.plane.point * s,
@@ -27,7 +28,7 @@ fn scale_shape(shape: &Shape, s: f64) -> Shape {
                     "f",
                 )
                 .unwrap(),
-            )
+            ))
         }
         Shape::TiledPlane(f) => Shape::TiledPlane(
             PlaneFrame::new(
@@ -46,7 +47,7 @@ fn scale_shape(shape: &Shape, s: f64) -> Shape {
                 x.size.radius * s,
                 x.size.height * s,
             );
-            Shape::Paraboloid(shape.unwrap())
+            Shape::Paraboloid(Box::new(shape.unwrap()))
         }
         Shape::Cylinder(x) => {
             let f = &x.equation.frame;
@@ -56,11 +57,11 @@ fn scale_shape(shape: &Shape, s: f64) -> Shape {
                 x.size.radius * s,
                 x.size.height * s,
             );
-            Shape::Cylinder(shape.unwrap())
+            Shape::Cylinder(Box::new(shape.unwrap()))
         }
         Shape::Cone(x) => {
             let f = &x.equation.frame;
-            Shape::Cone(
+            Shape::Cone(Box::new(
                 Cone::new(
                     f.centre * s,
                     line(f.irot()),
@@ -68,12 +69,14 @@ fn scale_shape(shape: &Shape, s: f64) -> Shape {
                     x.size.height * s,
                 )
                 .unwrap(),
-            )
+            ))
         }
         Shape::Hyperboloid(x) => {
             let f = &x.equation.frame;
             let (r, h, w) = (x.size.radius * s, x.size.height * s, x.waist * s);
-            Shape::Hyperboloid(Hyperboloid::new(f.centre * s, line(f.irot()), r, h, w).unwrap())
+            Shape::Hyperboloid(Box::new(
+                Hyperboloid::new(f.centre * s, line(f.irot()), r, h, w).unwrap(),
+            ))
         }
         Shape::Quadric(x) => {
             // f(P / s) s²: the quadratic terms stay, the linear ones gain s, J gains s².
@@ -98,9 +101,9 @@ fn scaled(scene: &Scene, s: f64) -> Option<Scene> {
         .objects
         .iter()
         .map(|object| {
-            let mut material = object.material;
+            let mut material = object.look.material;
             material.ambient *= s;
-            let pattern = match &object.pattern {
+            let pattern = match &object.look.pattern {
                 Pattern::Plain => Pattern::Plain,
                 Pattern::Tiles { tile, background } => {
                     let mut background = background.clone();
@@ -114,8 +117,7 @@ fn scaled(scene: &Scene, s: f64) -> Option<Scene> {
             };
             Some(Object {
                 shape: scale_shape(&object.shape, s),
-                material,
-                pattern,
+                look: Arc::new(Look { material, pattern }),
                 ..object.clone()
             })
         })

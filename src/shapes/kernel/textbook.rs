@@ -248,7 +248,7 @@ pub(crate) fn plane<R: Real>(plane: &Plane, ray: &Ray, notes: &mut impl Notes) -
 impl Kernel for Textbook {
     #[inline(always)]
     fn sphere<N: Notes>(sphere: &Sphere, ray: &Ray, notes: &mut N) -> Option<f64> {
-        axis_quadric::<f64>(&sphere.equation, ray, Formula::Notes, notes)
+        axis_quadric::<f64>(&sphere.equation(), ray, Formula::Notes, notes)
     }
 
     #[inline(always)]
@@ -270,7 +270,7 @@ impl Kernel for Textbook {
 impl Kernel for Stable {
     #[inline(always)]
     fn sphere<N: Notes>(sphere: &Sphere, ray: &Ray, notes: &mut N) -> Option<f64> {
-        axis_quadric::<f64>(&sphere.equation, ray, Formula::Stable, notes)
+        axis_quadric::<f64>(&sphere.equation(), ray, Formula::Stable, notes)
     }
 
     #[inline(always)]
@@ -292,7 +292,7 @@ impl Kernel for Stable {
 impl Kernel for TextbookF32 {
     #[inline(always)]
     fn sphere<N: Notes>(sphere: &Sphere, ray: &Ray, notes: &mut N) -> Option<f64> {
-        axis_quadric::<f32>(&sphere.equation, ray, Formula::Notes, notes)
+        axis_quadric::<f32>(&sphere.equation(), ray, Formula::Notes, notes)
     }
 
     #[inline(always)]

@@ -339,7 +339,7 @@ pub fn suite() -> Vec<Family> {
 /// A sphere, cylinder or cone written as a `QUADRIC`.
 fn general_quadric_of(shape: &Shape) -> Quadric {
     match shape {
-        Shape::Sphere(s) => as_general_quadric(&s.equation),
+        Shape::Sphere(s) => as_general_quadric(&s.equation()),
         Shape::Cylinder(s) => as_general_quadric(&s.equation),
         Shape::Cone(s) => as_general_quadric(&s.equation),
         other => unreachable!("{other:?} is not rewritten"),
@@ -408,7 +408,12 @@ fn cylinder(g: &mut Gen, far: f64) -> Cylinder {
 fn cylinder_side(g: &mut Gen, far: f64) -> Side {
     let s = cylinder(g, far);
     let y = g.uniform(0.1, 0.9) * s.size.height;
-    Side::new(s.size.radius, y, s.size.radius, Shape::Cylinder(s))
+    Side::new(
+        s.size.radius,
+        y,
+        s.size.radius,
+        Shape::Cylinder(Box::new(s)),
+    )
 }
 
 fn cylinder_parallel(g: &mut Gen) -> Case {
@@ -429,7 +434,7 @@ fn cylinder_parallel(g: &mut Gen) -> Case {
     let dir = DVec3::new(0.0, 1.0, 0.0) + tilt * drift;
     let ray = from_local(&s.equation, base, dir);
     Case {
-        shape: Shape::Cylinder(s),
+        shape: Shape::Cylinder(Box::new(s)),
         ray,
     }
 }
@@ -443,7 +448,7 @@ fn cylinder_rims(g: &mut Gen) -> Case {
     let (base, dir) = across_axis(g, y, impact, distance);
     let ray = from_local(&s.equation, base, dir);
     Case {
-        shape: Shape::Cylinder(s),
+        shape: Shape::Cylinder(Box::new(s)),
         ray,
     }
 }
@@ -457,7 +462,7 @@ fn cone(g: &mut Gen, far: f64) -> Cone {
 fn cone_side(g: &mut Gen, far: f64) -> Side {
     let s = cone(g, far);
     let y = g.uniform(0.2, 0.9) * s.size.height;
-    Side::new(s.k().sqrt() * y, y, s.size.radius, Shape::Cone(s))
+    Side::new(s.k().sqrt() * y, y, s.size.radius, Shape::Cone(Box::new(s)))
 }
 
 fn cone_generator(g: &mut Gen) -> Case {
@@ -475,7 +480,7 @@ fn cone_generator(g: &mut Gen) -> Case {
     let base = target - g.uniform(0.5, 5.0) * s.size.height * dir;
     let ray = from_local(&s.equation, base, dir);
     Case {
-        shape: Shape::Cone(s),
+        shape: Shape::Cone(Box::new(s)),
         ray,
     }
 }
@@ -493,7 +498,7 @@ fn cone_apex(g: &mut Gen) -> Case {
     };
     let ray = from_local(&s.equation, from, target - from);
     Case {
-        shape: Shape::Cone(s),
+        shape: Shape::Cone(Box::new(s)),
         ray,
     }
 }
@@ -507,7 +512,12 @@ fn paraboloid(g: &mut Gen, far: f64) -> Paraboloid {
 fn paraboloid_side(g: &mut Gen, far: f64) -> Side {
     let s = paraboloid(g, far);
     let y = g.uniform(0.2, 0.9) * s.size.height;
-    Side::new((s.k() * y).sqrt(), y, s.size.radius, Shape::Paraboloid(s))
+    Side::new(
+        (s.k() * y).sqrt(),
+        y,
+        s.size.radius,
+        Shape::Paraboloid(Box::new(s)),
+    )
 }
 
 fn paraboloid_axis(g: &mut Gen) -> Case {
@@ -523,7 +533,7 @@ fn paraboloid_axis(g: &mut Gen) -> Case {
     let dir = DVec3::new(0.0, -1.0, 0.0) + g.log(1e-12, 1e-6) * g.sign() * out;
     let ray = from_local(&s.equation, base, dir);
     Case {
-        shape: Shape::Paraboloid(s),
+        shape: Shape::Paraboloid(Box::new(s)),
         ray,
     }
 }
@@ -539,7 +549,7 @@ fn hyperboloid_side(g: &mut Gen, far: f64) -> Side {
     let s = hyperboloid(g, far);
     let y = g.uniform(-0.9, 0.9) * s.size.height;
     let radius = (s.k() * y * y + s.waist * s.waist).sqrt();
-    Side::new(radius, y, s.size.radius, Shape::Hyperboloid(s))
+    Side::new(radius, y, s.size.radius, Shape::Hyperboloid(Box::new(s)))
 }
 
 fn hyperboloid_waist(g: &mut Gen) -> Case {
@@ -554,7 +564,7 @@ fn hyperboloid_waist(g: &mut Gen) -> Case {
     let (base, dir) = across_axis(g, y, impact, distance);
     let ray = from_local(&s.equation, base, dir);
     Case {
-        shape: Shape::Hyperboloid(s),
+        shape: Shape::Hyperboloid(Box::new(s)),
         ray,
     }
 }

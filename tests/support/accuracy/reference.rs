@@ -18,7 +18,7 @@ const EPS: f64 = f64::EPSILON;
 pub fn reference(case: &Case) -> Reference {
     let ray = &case.ray;
     match &case.shape {
-        Shape::Sphere(s) => axis_reference(&s.equation, ray),
+        Shape::Sphere(s) => axis_reference(&s.equation(), ray),
         Shape::Paraboloid(s) => axis_reference(&s.equation, ray),
         Shape::Cylinder(s) => axis_reference(&s.equation, ray),
         Shape::Cone(s) => axis_reference(&s.equation, ray),
