@@ -38,6 +38,10 @@ pub fn line_blank(input: &str) -> IResult<&str, &str> {
 
 /// The rest of the line and its newline: the comment after a group's numbers.
 pub fn comment(input: &str) -> IResult<&str, &str> {
+    // Most lines end right after their numbers: no search needed.
+    if let Some(rest) = input.strip_prefix('\n') {
+        return Ok((rest, ""));
+    }
     Ok(match input.split_once('\n') {
         Some((text, rest)) => (rest, text),
         None => ("", input),
@@ -166,7 +170,7 @@ const EXACT_POWERS: [f64; 23] = [
 /// as an f64, and the power of ten p lies within ±22, exact too, so m × 10^p or m / 10^-p
 /// is rounded once, correctly, as Rust's own parser rounds. Nearly every number of a
 /// scene is that short; the others are left to that parser.
-fn scan_decimal(input: &str) -> Option<(usize, Option<f64>)> {
+pub fn scan_decimal(input: &str) -> Option<(usize, Option<f64>)> {
     let bytes = input.as_bytes();
     let mut at = usize::from(matches!(bytes.first(), Some(b'+' | b'-')));
     if bytes[at..].starts_with(b"0x") || bytes[at..].starts_with(b"0X") {
