@@ -177,7 +177,7 @@ pub struct Look {
     pub pattern: Pattern,
 }
 
-/// A visible object: a shape and its look, 80 bytes whatever its kind (a million
+/// A visible object: a shape and its look, 88 bytes whatever its kind (a million
 /// records must fit a laptop's memory).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Object {

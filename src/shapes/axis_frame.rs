@@ -11,7 +11,7 @@ pub struct AxisFrame {
     pub centre: DVec3,
     /// The rotation, `None` when it is the identity (every sphere, and a centre line
     /// along +y): the hit test then skips the matrix products, and an unrotated frame
-    /// takes 32 bytes instead of 176 (a million spheres, 144 MB less).
+    /// takes 32 bytes instead of 176 (a million unrotated cylinders, 144 MB less).
     pub rotation: Option<Box<Rotation>>,
 }
 

@@ -97,8 +97,9 @@ mod tests {
 
     #[test]
     fn the_box_is_the_general_quadrics_box() {
-        // Radii whose squares round (0.1, 1/3, 1e154: r² is not r times r exactly), huge
-        // and tiny ones, and centres far from the origin.
+        // Radii whose squares round (0.1, 1/3: sqrt(r²) need not be r), huge and tiny
+        // ones (3e160: r² overflows, and there is no box), and centres far from the
+        // origin.
         let radii = [0.1, 1.0 / 3.0, 2.0, 7e-155, 1e154, 3e160];
         let centres = [DVec3::ZERO, DVec3::new(-1e12, 0.3, 5e-9), DVec3::splat(7.1)];
         for (r, c) in radii.into_iter().flat_map(|r| centres.map(|c| (r, c))) {

@@ -275,9 +275,9 @@ fn spans_give_each_pixels_own_bytes() {
 /// Memory per object (issue 30): a million records must fit a laptop's memory, so an
 /// object holds in place only what the common kinds need. The sphere keeps its centre and
 /// radius (its equation is built when a kernel asks), the rarer shapes are boxed, and the
-/// material and pattern are one shared look for a run of records that agree. Measured
-/// 280 bytes before (472 the round before that); the sizes per kind are in
-/// docs/performance.md.
+/// material and pattern are one shared look for a run of records with the same plain
+/// material. Measured 280 bytes before (472 the round before that); the sizes per kind
+/// are in docs/performance.md.
 #[test]
 fn an_object_takes_at_most_88_bytes() {
     use legacy_rt::scene::{Object, Pattern};
