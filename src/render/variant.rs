@@ -924,7 +924,9 @@ impl Rules {
                 .filter(|object| variant.line.is_none_or(|line| object.line == line));
             for object in objects {
                 match variant.kind {
-                    Kind::TileParity => {
+                    // Only a tiled plane's look is copied (`make_mut`: the unvaried scene
+                    // shares it); every other object keeps sharing its own.
+                    Kind::TileParity if matches!(object.look.pattern, Pattern::Tiles { .. }) => {
                         let look = Arc::make_mut(&mut object.look);
                         if let Pattern::Tiles { background, .. } = &mut look.pattern {
                             // Even relx + rely now picks the first material: the same as
@@ -1199,6 +1201,29 @@ mod tests {
                 assert_eq!(rule.byte(c), written(rule, c), "{rule:?} {c:e}");
             }
         }
+    }
+
+    #[test]
+    fn tile_parity_copies_only_the_tiled_planes_look() {
+        // Two spheres of one material share a look; a tiled plane after them. Under
+        // tile-parity the plane's two materials trade places in the varied scene alone,
+        // and the spheres keep the look they share with the unvaried scene.
+        let m = "1 1 1\n1 1 1\n0 0 0\n";
+        let text = format!(
+            "8 6\n0 0 3\n13\n{m}0 0 -5\n1\n13\n{m}2 0 -5\n1\n\
+             16\n{m}0 1 0\n0 -3 0\n1 0 0\n1 1\n2 2 2\n0 0 0\n0 0 0\n"
+        );
+        let scene = crate::scene::load(&text).unwrap();
+        let options = Options::new(4, 3)
+            .with_variant(Variant::of(Kind::TileParity))
+            .unwrap();
+        let varied = Rules::scene(&options, &scene);
+        let shared = |i: usize| Arc::ptr_eq(&scene.objects[i].look, &varied.objects[i].look);
+        assert!(shared(0) && shared(1));
+        assert!(!shared(2));
+        let (before, after) = (&scene.objects[2].look, &varied.objects[2].look);
+        assert_eq!(before.material.ambient, DVec3::ONE);
+        assert_eq!(after.material.ambient, DVec3::splat(2.0));
     }
 
     #[test]
