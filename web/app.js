@@ -4,6 +4,9 @@
 
 const $ = (id) => document.getElementById(id);
 
+// The page is running (served, not opened from disk): the note that says to serve it goes.
+$('served-note').hidden = true;
+
 // ---- The worker: requests as promises; a render in flight is cancelled by ending it.
 
 class Renderer {
@@ -240,6 +243,7 @@ async function update() {
     if (picked && (picked.x >= image.width || picked.row >= image.height)) forgetPixel();
     if (state.picked) await tracePixel(state.picked.x, state.picked.row);
     else drawMark();
+    if ($('against').value.trim()) await readAgainstAll();
     if (state.student) await compareStudent();
     if (current()) setState('done');
   } catch (error) {
@@ -260,7 +264,7 @@ async function update() {
 // What was computed from a scene that no longer loads (the diff, the report, the trace
 // and the student's trace read against it) is marked stale, or unmarked once it loads.
 function markStale(stale) {
-  for (const id of ['report', 'trace', 'trace-command', 'against-report']) {
+  for (const id of ['report', 'trace', 'trace-command', 'against-report', 'against-summary']) {
     if (stale) $(id).dataset.stale = 'the scene no longer loads: this was computed from its last version';
     else delete $(id).dataset.stale;
   }
@@ -356,7 +360,63 @@ async function tracePixel(x, row) {
   $('trace').textContent = traced.text;
   $('trace-pane').dataset.pixel = `${traced.x},${traced.y}`;
   $('trace-pane').dataset.bytes = traced.bytes.join(' ');
+  $('trace-x').value = String(traced.x);
+  $('trace-y').value = String(traced.y);
   await readAgainst();
+}
+
+// Traces pixel (x, y), (0, 0) at the lower left, as typed or named by a report.
+async function traceXY(x, y) {
+  const full = state.full;
+  if (!full) return;
+  if (!(Number.isInteger(x) && Number.isInteger(y) && x >= 0 && y >= 0 && x < full.width && y < full.height)) {
+    $('trace-title').textContent =
+      `(${x}, ${y}) is outside the ${full.width}x${full.height} image: X below ${full.width}, Y below ${full.height}`;
+    return;
+  }
+  setState('tracing');
+  try {
+    const row = await renderer.call('row', {
+      text: editor.value, width: full.width, height: full.height, choices: choices(), y,
+    });
+    await tracePixel(x, row);
+    setState('done');
+  } catch (error) {
+    if (error.cancelled) return;
+    $('trace').textContent = error.message;
+    setState('error');
+  }
+}
+
+function tracedTyped() {
+  traceXY(Number($('trace-x').value), Number($('trace-y').value));
+}
+$('trace-go').addEventListener('click', tracedTyped);
+for (const id of ['trace-x', 'trace-y']) {
+  $(id).addEventListener('keydown', (event) => {
+    if (event.key === 'Enter') tracedTyped();
+  });
+}
+
+// A report's text with each pixel it names at the start of a line, `(x, y)`, as a button
+// that traces that pixel.
+function showWithPixels(element, text) {
+  element.textContent = '';
+  for (const line of text.split(/(?<=\n)/)) {
+    const match = line.match(/^(\s+(?:e\.g\. )?)\((\d+), (\d+)\)/);
+    if (!match) {
+      element.append(line);
+      continue;
+    }
+    const [whole, lead, x, y] = match;
+    element.append(lead);
+    const button = document.createElement('button');
+    button.className = 'pixel-link';
+    button.textContent = `(${x}, ${y})`;
+    button.title = `trace pixel (${x}, ${y})`;
+    button.addEventListener('click', () => traceXY(Number(x), Number(y)));
+    element.append(button, line.slice(whole.length));
+  }
 }
 
 // ---- The student's own debug trace, read against the clicked pixel's (`--against`).
@@ -391,16 +451,38 @@ async function readAgainst() {
   }
 }
 
+// Reads every pixel of the pasted or opened trace, as `trace --against FILE W H` does:
+// the counts, and each group's pixel as a button that traces it.
+async function readAgainstAll() {
+  const student = $('against').value;
+  const full = state.full;
+  const summary = $('against-summary');
+  if (!full || !student.trim()) {
+    summary.hidden = true;
+    return;
+  }
+  summary.hidden = false;
+  try {
+    const read = await renderer.call('againstAll', {
+      text: editor.value, width: full.width, height: full.height,
+      choices: choices(), fileName: state.againstName, student,
+    });
+    showWithPixels(summary, read.text);
+    summary.dataset.agrees = read.agrees ? 'yes' : 'no';
+  } catch (error) {
+    if (error.cancelled) throw error;
+    summary.textContent = `error: ${error.message}`;
+    summary.dataset.agrees = 'unreadable';
+  }
+}
+
 // After the trace was pasted, typed, opened or dropped.
 async function againstChanged() {
   $('against-box').open = true;
-  if (!state.picked) {
-    showAgainst('Click the pixel whose trace this is.', null);
-    return;
-  }
   setState('tracing');
   try {
-    await readAgainst();
+    await readAgainstAll();
+    if (state.picked) await readAgainst();
     setState('done');
   } catch (error) {
     if (!error.cancelled) setState('error');
@@ -432,6 +514,8 @@ $('against').addEventListener('drop', (event) => {
 $('forget-against').addEventListener('click', () => {
   $('against').value = '';
   showAgainst(null);
+  $('against-summary').hidden = true;
+  delete $('against-summary').dataset.agrees;
 });
 
 $('image').addEventListener('click', async (event) => {
@@ -490,7 +574,7 @@ async function compareStudent() {
       return;
     }
     state.comparison = result;
-    $('report').textContent = result.text;
+    showWithPixels($('report'), result.text);
     $('report').dataset.verdict = result.matches ? 'match' : 'differ';
     draw($('diff'), result.diff, result.width, result.height);
     showDiff();

@@ -64,6 +64,19 @@ const ops = {
     return JSON.parse(json);
   },
 
+  againstAll({ text, width, height, choices, fileName, student }) {
+    const result = load(text);
+    if (result.error) throw sceneError(result);
+    const json = session.against_all(width, height, JSON.stringify(choices), fileName, student);
+    return JSON.parse(json);
+  },
+
+  row({ text, width, height, choices, y }) {
+    const result = load(text);
+    if (result.error) throw sceneError(result);
+    return session.row(width, height, JSON.stringify(choices), y);
+  },
+
   compare({ text, sceneName, name, bytes, choices, levels, allow, diagnose }) {
     const result = load(text);
     if (result.error) throw sceneError(result);

@@ -59,6 +59,26 @@ pub fn text_of(bytes: Vec<u8>) -> String {
         .unwrap_or_else(|invalid| String::from_utf8_lossy(invalid.as_bytes()).into_owned())
 }
 
+/// The file standard input reads, as the reports' commands name it: relative to the
+/// current folder where it is inside it; `None` for a pipe or a terminal, or where the
+/// system does not say.
+pub fn stdin_name() -> Option<String> {
+    #[cfg(target_os = "linux")]
+    {
+        let path = std::fs::read_link("/proc/self/fd/0").ok()?;
+        if !std::fs::metadata(&path).ok()?.is_file() {
+            return None;
+        }
+        let here = std::env::current_dir().ok()?;
+        let shown = path.strip_prefix(&here).unwrap_or(&path);
+        Some(shown.display().to_string())
+    }
+    #[cfg(not(target_os = "linux"))]
+    {
+        None
+    }
+}
+
 /// Fails when standard output was closed at start: checked before any work, so that a
 /// run whose output has nowhere to go fails at once instead of rendering into nothing.
 pub fn check_stdout() -> Result<(), Failure> {

@@ -9,7 +9,7 @@ use crate::render::Choices;
 /// does, and in the `$'…'` quotes of bash and zsh, with escapes, when it holds a control
 /// or invisible character (a newline or an escape code would otherwise act on the
 /// terminal or start a line of its own in the report).
-fn shell_word(path: &str) -> String {
+pub fn shell_word(path: &str) -> String {
     let plain = |c: char| c.is_ascii_alphanumeric() || "_./-+,:=@%".contains(c);
     if !path.is_empty() && path.chars().all(plain) {
         return path.to_string();

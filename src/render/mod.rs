@@ -29,7 +29,7 @@ pub(crate) use reach::{Steps, packed};
 pub use record::{Event, LightStep, Skip, Stats};
 pub use shading::PatternNote;
 pub use stage::{Show, Stage};
-pub use trace::{CourseIds, Trace, trace};
+pub use trace::{CourseIds, Trace, Tracing, trace, tracing};
 pub use variant::{Kind, VARIANTS, Variant, Variants};
 
 /// The largest precision `compare` takes: how far past its answer a query goes on

@@ -8,12 +8,14 @@
 //! print those events.
 
 use super::record::{Event, LightStep, Skip};
+use super::tracer::Tracer;
+use super::variant::Rules;
 use super::{Options, Setup};
 use crate::render::shading::PatternNote;
 use crate::scene::Scene;
 use crate::scene::dump::number;
 use crate::shapes::kernel::with_kernel;
-use crate::shapes::{HitNote, Verdict};
+use crate::shapes::{HitNote, Ray, Verdict, unit};
 use glam::DVec3;
 use std::fmt::Write;
 
@@ -38,27 +40,81 @@ pub struct Trace {
 /// Every object is tested in file order, as the course program did (the tiles and the
 /// hierarchy change which objects are tested, never the bytes).
 pub fn trace(scene: &Scene, options: &Options, x: usize, y: usize) -> Option<Trace> {
-    if x >= options.width || y >= options.height {
-        return None;
-    }
+    tracing(scene, options, |frame| frame.trace(x, y))
+}
+
+/// A scene prepared once under `options` for the traces of many pixels (a student's
+/// whole debug trace is read against one per block), lent to `body`.
+pub fn tracing<T>(scene: &Scene, options: &Options, body: impl FnOnce(&Tracing<'_>) -> T) -> T {
     let setup = Setup::new(scene, options);
-    let tracer = setup.tracer(options);
-    let mut events = Vec::new();
-    let colour = match setup.camera.ray(x, y) {
-        Some(ray) => {
-            let tile = tracer.objects.tile(x, y);
-            with_kernel!(options.kernel, K => tracer.pixel::<K>(ray, tile, &mut events))
-        }
-        None => DVec3::ZERO,
-    };
-    Some(Trace {
-        pixel: (x, y),
-        world: setup.camera.world(x, y),
+    // No tiles: a trace tests every object in file order whatever a render's lists hold.
+    let tracer = Tracer::new(&setup.scene, &setup.rules, options, None, None);
+    body(&Tracing {
+        setup: &setup,
+        tracer,
         options: *options,
-        events,
-        colour,
-        bytes: setup.rules.bytes(colour),
     })
+}
+
+/// A scene prepared for traces ([`tracing`]): each pixel's, or the camera ray's through
+/// any point of the screen.
+pub struct Tracing<'a> {
+    setup: &'a Setup<'a>,
+    tracer: Tracer<'a, &'a Rules>,
+    options: Options,
+}
+
+impl Tracing<'_> {
+    /// The options traced with.
+    pub fn options(&self) -> &Options {
+        &self.options
+    }
+
+    /// The world point of pixel (x, y) (spec §4.1, or §7.3's pixel-centre), (0, 0) at
+    /// the lower left; x and y below the width and height.
+    pub fn world(&self, x: usize, y: usize) -> DVec3 {
+        self.setup.camera.world(x, y)
+    }
+
+    /// The bytes a colour is written as (spec §4.7, or a byte variant's rule).
+    pub fn bytes(&self, colour: DVec3) -> [u8; 3] {
+        self.setup.rules.bytes(colour)
+    }
+
+    /// The trace of pixel (x, y), or `None` if it lies outside the image.
+    pub fn trace(&self, x: usize, y: usize) -> Option<Trace> {
+        if x >= self.options.width || y >= self.options.height {
+            return None;
+        }
+        Some(self.through((x, y), self.world(x, y)))
+    }
+
+    /// The trace of the camera ray through the point `world` of the screen (z = 0), named
+    /// as pixel `pixel`'s: a program's ray through a point that is not its pixel's (a
+    /// row off, jittered) followed as the reference follows its own.
+    pub fn through(&self, pixel: (usize, usize), world: DVec3) -> Trace {
+        let mut events = Vec::new();
+        let viewpoint = self.setup.camera.viewpoint;
+        let kernel = self.options.kernel;
+        let colour = match unit(world - viewpoint) {
+            Some(dir) => {
+                let ray = Ray {
+                    base: viewpoint,
+                    dir,
+                };
+                with_kernel!(kernel, K => self.tracer.pixel::<K>(ray, None, &mut events))
+            }
+            None => DVec3::ZERO,
+        };
+        Trace {
+            pixel,
+            world,
+            options: self.options,
+            events,
+            colour,
+            bytes: self.bytes(colour),
+        }
+    }
 }
 
 /// A vector with the trace's fixed decimals.

@@ -222,34 +222,61 @@ fn the_readme_s_trace_example_is_what_the_program_prints() {
     }
 }
 
+/// Runs the README's command line `args` from the repository's folder, the scene on
+/// standard input as the README's `< examples/...` gives it: the exit code and output.
+fn readme_command(args: &[&str], scene: &str) -> (Option<i32>, String) {
+    let output = std::process::Command::new(env!("CARGO_BIN_EXE_legacy-rt"))
+        .args(args)
+        .current_dir(root())
+        .stdin(std::fs::File::open(root().join(scene)).unwrap())
+        .output()
+        .unwrap();
+    (
+        output.status.code(),
+        String::from_utf8(output.stdout).unwrap(),
+    )
+}
+
 #[test]
-fn the_readme_s_against_example_is_what_the_program_prints() {
+fn the_readme_s_against_examples_are_what_the_program_prints() {
     let readme = readme();
     let section = section_from(&readme, "`legacy-rt` can do that lining up");
     let blocks = fenced_blocks(section, "text");
-    assert_eq!(blocks.len(), 2, "{blocks:?}");
-    let command =
-        "legacy-rt trace 410 175 --against examples/studio-410-175.dbg < examples/studio.txt\n";
-    assert_eq!(blocks[0], command);
-    // Run from the repository's folder, as the README's reader does.
-    let output = std::process::Command::new(env!("CARGO_BIN_EXE_legacy-rt"))
-        .args([
-            "trace",
-            "410",
-            "175",
-            "--against",
-            "examples/studio-410-175.dbg",
-        ])
-        .current_dir(root())
-        .stdin(std::fs::File::open(root().join("examples/studio.txt")).unwrap())
-        .output()
-        .unwrap();
-    assert_eq!(output.status.code(), Some(1));
-    let report = String::from_utf8(output.stdout).unwrap();
+    assert_eq!(blocks.len(), 4, "{blocks:?}");
+    // The whole file: every line shown is the report's, "..." for the rest.
+    assert_eq!(
+        blocks[0],
+        "legacy-rt trace --against examples/studio-8x6.dbg 8 6 < examples/studio.txt\n"
+    );
+    let args = ["trace", "--against", "examples/studio-8x6.dbg", "8", "6"];
+    let (code, report) = readme_command(&args, "examples/studio.txt");
+    assert_eq!(code, Some(1));
+    let lines: Vec<&str> = report.lines().collect();
+    for line in blocks[1].lines().filter(|line| line.trim() != "...") {
+        assert!(
+            lines.contains(&line),
+            "README: `{line}` is not in the report:\n{report}"
+        );
+    }
+    // One pixel.
+    let command = "legacy-rt trace 410 175 640 480 --against examples/studio-410-175.dbg \
+                   < examples/studio.txt\n";
+    assert_eq!(blocks[2], command);
+    let args = [
+        "trace",
+        "410",
+        "175",
+        "640",
+        "480",
+        "--against",
+        "examples/studio-410-175.dbg",
+    ];
+    let (code, report) = readme_command(&args, "examples/studio.txt");
+    assert_eq!(code, Some(1));
     assert!(
-        report.starts_with(&blocks[1]),
+        report.starts_with(&blocks[3]),
         "README:\n{}\nreport:\n{report}",
-        blocks[1]
+        blocks[3]
     );
 }
 

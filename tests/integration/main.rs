@@ -30,6 +30,8 @@ mod examples;
 mod performance;
 // Pixel values derived from the formulas of spec §4.
 mod pixels;
+// `trace --against` on the real traces of ../shared/student-traces, edited and relabelled.
+mod real_traces;
 // What a hostile audit broke (issue 12): -o, pipes, limits, terminals.
 mod reliability;
 // Property tests: random, mutated and generated scenes load or fail cleanly, and render.

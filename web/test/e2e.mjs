@@ -14,6 +14,11 @@
 //      compare report, which names that variant, and a diff image over the canvas;
 //   7. a student's own debug trace pasted beside a clicked pixel gets `trace --against`'s
 //      report: the planted first difference, agreement, or the refusal of another pixel;
+//      a whole image's trace gets `trace --against FILE W H`'s summary, whose pixels trace
+//      when clicked;
+//  10. a pixel typed as X and Y is traced (at any size the canvas is shown), and the
+//      pixels a compare report names trace when clicked;
+//  11. opened from disk (file://), the page says to serve it with web/serve.sh;
 //   8. `legacy-rt grade`'s report (index.html), opened from disk: no console error, every
 //      image loads, no request leaves the disk;
 //   9. at 1366x900 and 390x844 nothing is cut at the right, every control is labelled, and
@@ -439,6 +444,88 @@ async function readsAStudentsTrace(page) {
   console.log(`ok 7 - a pasted trace of pixel (${x}, ${y}) is read as trace --against reads it: ${planted.shown.split('\n')[0].slice(0, 80)}…`);
 }
 
+// 7b. A whole image's trace (every pixel of an 8x6 render of studio.txt, one with the
+// light's distance squared) gets `trace --against FILE 8 6`'s summary, and the group's
+// pixel, clicked, is traced and read to its first difference.
+async function readsAWholeTrace(page) {
+  assert.equal(await openExample(page, 'studio.txt'), 'done');
+  await page.fill('#height', '6');
+  assert.equal(await setAndRender(page, '#width', '8'), 'done');
+  const scene = readFileSync(join(top, 'examples/studio.txt'));
+  let whole = '';
+  for (let y = 0; y < 6; y++) {
+    for (let x = 0; x < 8; x++) {
+      const own = legacyRt(['trace', String(x), String(y), '8', '6', '--format', 'course'], { input: scene });
+      let text = own.stdout.toString().replace(/^bytes:.*\n/m, '');
+      // Pixel (5, 2): the first light's distance printed squared.
+      if (x === 5 && y === 2) {
+        text = text.replace(/distance to light is +([0-9.]+)/, (_, d) => `distance to light is ${(d * d).toFixed(3)}`);
+      }
+      whole += text;
+    }
+  }
+  writeFileSync(join(scratch, 'dbg.txt'), whole);
+  const cli = legacyRt(['trace', '--against', 'dbg.txt', '8', '6'], { input: scene, cwd: scratch });
+  assert.equal(cli.status, 1, cli.stderr);
+  await page.click('#against-box summary');
+  await page.evaluate(() => { document.body.dataset.state = 'edited'; });
+  await page.fill('#against', whole);
+  await page.waitForFunction(() => document.getElementById('against-summary').dataset.agrees);
+  assert.equal(await settled(page), 'done');
+  assert.equal(await page.textContent('#against-summary'), cli.stdout.toString());
+  assert.equal(await page.getAttribute('#against-summary', 'data-agrees'), 'no');
+  await page.evaluate(() => { document.body.dataset.state = 'edited'; });
+  await page.click('#against-summary .pixel-link');
+  assert.equal(await settled(page), 'done');
+  assert.equal(await page.getAttribute('#trace-pane', 'data-pixel'), '5,2');
+  assert.match(await page.textContent('#against-report'), /^first difference: .*distance to the light/);
+  await page.click('#forget-against');
+  assert.equal(await page.isVisible('#against-summary'), false);
+  console.log(`ok 7b - a whole trace is read as trace --against FILE 8 6 reads it: ${cli.stdout.toString().split('\n')[0]}`);
+}
+
+// 10. X and Y typed in are traced, whatever the canvas's shown size; the pixels of a
+// compare report are links that trace them.
+async function tracesTypedAndReportedPixels(page) {
+  assert.equal(await openExample(page, 'spheres.txt'), 'done');
+  await page.fill('#height', '480');
+  assert.equal(await setAndRender(page, '#width', '640'), 'done');
+  await page.evaluate(() => { document.body.dataset.state = 'edited'; });
+  await page.fill('#trace-x', '639');
+  await page.fill('#trace-y', '0');
+  await page.click('#trace-go');
+  assert.equal(await settled(page), 'done');
+  assert.equal(await page.getAttribute('#trace-pane', 'data-pixel'), '639,0');
+  const scene = readFileSync(join(top, 'examples/spheres.txt'));
+  const cli = legacyRt(['trace', '639', '0', '640', '480'], { input: scene });
+  assert.equal(await page.textContent('#trace'), cli.stdout.toString());
+  // A report's pixel: an image made with a mistake, compared, its first worst pixel clicked.
+  const made = legacyRt(['640', '480', '--variant', 'square-falloff'], { input: scene });
+  const file = join(scratch, 'square.ppm');
+  writeFileSync(file, made.stdout);
+  await page.evaluate(() => { document.body.dataset.state = 'edited'; });
+  await page.setInputFiles('#student', file);
+  assert.equal(await settled(page), 'done');
+  const link = page.locator('#report .pixel-link').first();
+  const [, x, y] = (await link.textContent()).match(/\((\d+), (\d+)\)/);
+  await page.evaluate(() => { document.body.dataset.state = 'edited'; });
+  await link.click();
+  assert.equal(await settled(page), 'done');
+  assert.equal(await page.getAttribute('#trace-pane', 'data-pixel'), `${x},${y}`);
+  await page.click('#forget-student');
+  console.log(`ok 10 - X and Y typed trace (639, 0); the report's pixel (${x}, ${y}) traces when clicked`);
+}
+
+// 11. Opened from disk, the page cannot start its module and worker: it says how to serve it.
+async function saysToServeItFromDisk(browser) {
+  const page = await browser.newPage();
+  await page.goto(`file://${join(web, 'dist/index.html')}`);
+  assert.equal(await page.isVisible('#served-note'), true);
+  assert.match(await page.textContent('#served-note'), /web\/serve\.sh/);
+  await page.close();
+  console.log('ok 11 - opened from disk, the page says to serve it with web/serve.sh');
+}
+
 // 8. `legacy-rt grade`'s report, opened from disk as an instructor opens it: no console
 // error, every image it names loads (the lazy ones made eager), nothing from the network.
 async function gradeReportLoads(browser, file) {
@@ -631,6 +718,9 @@ async function main() {
     await comparesAtTheStudentsSize(page);
     await marksStaleResults(page);
     await readsAStudentsTrace(page);
+    await readsAWholeTrace(page);
+    await tracesTypedAndReportedPixels(page);
+    await saysToServeItFromDisk(browser);
     await gradeReportLoads(browser, gradeScreenshot);
     await fitsALaptopAndAPhone(browser, url, { laptop: null, phone: phoneScreenshot });
     if (screenshot) await takeScreenshot(browser, url, screenshot);

@@ -178,6 +178,13 @@ impl Session {
     /// The reference's trace of the pixel in column `x` and canvas row `row` (0 at the
     /// top) of a render with `options`.
     fn pixel(&self, options: &Options, x: u32, row: u32) -> Result<Trace, JsError> {
+        let (x, y) = self.at(options, x, row)?;
+        legacy_rt::render::trace(self.scene()?, options, x, y)
+            .ok_or_else(|| thrown("the pixel is outside the image"))
+    }
+
+    /// The pixel (x, y), (0, 0) at the lower left, in column `x` and canvas row `row`.
+    fn at(&self, options: &Options, x: u32, row: u32) -> Result<(usize, usize), JsError> {
         let (w, h) = (options.width, options.height);
         let (x, row) = (x as usize, row as usize);
         if x >= w || row >= h {
@@ -186,9 +193,7 @@ impl Session {
             )));
         }
         // The row map is its own inverse: it gives the pixel row a canvas row shows.
-        let y = options.row_of(row);
-        legacy_rt::render::trace(self.scene()?, options, x, y)
-            .ok_or_else(|| thrown("the pixel is outside the image"))
+        Ok((x, options.row_of(row)))
     }
 
     fn scene(&self) -> Result<&Scene, JsError> {
@@ -304,15 +309,71 @@ impl Session {
         student: &str,
     ) -> Result<String, JsError> {
         let (options, _) = self.options(width, height, choices_json)?;
-        let trace = self.pixel(&options, x, row)?;
+        let scene = self.scene()?;
+        let (x, y) = self.at(&options, x, row)?;
+        let shown = legacy_rt::error::escaped(file_name);
+        let read = legacy_rt::render::tracing(scene, &options, |frame| {
+            legacy_rt::against::against(scene, frame, (x, y), student.as_bytes())
+        });
+        let (report, trace) = read.map_err(|unreadable| thrown(unreadable.about(&shown)))?;
+        let size = (options.width, options.height);
+        let mut json = serde_json::to_value(report.summary(size, file_name))
+            .map_err(|error| thrown(error.to_string()))?;
+        json["text"] = report.text(scene, &trace, &shown).into();
+        Ok(json.to_string())
+    }
+
+    /// Every pixel of the student's own debug trace read against the reference, as
+    /// `legacy-rt trace --against FILE W H` reads it: JSON with its `--json` keys
+    /// (`pixels`, `agree`, `differ`, `groups` each with its `pixel`, ...), `agrees`,
+    /// and `text`, the report the command prints.
+    pub fn against_all(
+        &self,
+        width: u32,
+        height: u32,
+        choices_json: &str,
+        file_name: &str,
+        student: &str,
+    ) -> Result<String, JsError> {
+        let (options, chosen) = self.options(width, height, choices_json)?;
         let scene = self.scene()?;
         let shown = legacy_rt::error::escaped(file_name);
-        let report = legacy_rt::against::against(scene, &trace, student)
-            .map_err(|unreadable| thrown(unreadable.about(&shown)))?;
-        let mut json = serde_json::to_value(report.summary(&trace, file_name))
-            .map_err(|error| thrown(error.to_string()))?;
-        json["text"] = report.text(scene, &trace, &shown, student).into();
+        let read = legacy_rt::render::tracing(scene, &options, |frame| {
+            legacy_rt::against::whole(scene, frame, student.as_bytes())
+        });
+        let report = read.map_err(|unreadable| thrown(unreadable.about(&shown)))?;
+        let (w, h) = (options.width, options.height);
+        let flags = chosen.flags();
+        let word = compare::text::shell_word(file_name);
+        let command = |x: usize, y: usize| {
+            format!("legacy-rt trace {x} {y} {w} {h}{flags} --against {word} < scene.txt")
+        };
+        let mut json = serde_json::to_value(&report).map_err(|error| thrown(error.to_string()))?;
+        json["agrees"] = report.agrees().into();
+        json["text"] = report.text(&shown, command).into();
+        // Each group's pixel's canvas row, for the page to trace it.
+        for (group, value) in report
+            .groups
+            .iter()
+            .zip(json["groups"].as_array_mut().into_iter().flatten())
+        {
+            value["row"] = options.row_of(group.pixel.1).into();
+        }
         Ok(json.to_string())
+    }
+
+    /// The canvas row that shows pixel row `y` (0 at the bottom) of a `width` x `height`
+    /// render with the page's choices: what the page traces for an X and Y typed in.
+    pub fn row(&self, width: u32, height: u32, choices_json: &str, y: u32) -> Result<u32, JsError> {
+        let (options, _) = self.options(width, height, choices_json)?;
+        let y = y as usize;
+        if y >= options.height {
+            return Err(thrown(format!(
+                "Y must be below {}, the image's height ((0, 0) is the lower-left pixel)",
+                options.height
+            )));
+        }
+        Ok(options.row_of(y) as u32)
     }
 
     /// Compares the student's image (`bytes` of a PPM or PNG file named `name`) with the
