@@ -15,6 +15,8 @@ same pairs with bench/grade.py.
 """
 import argparse, os, random, shutil, subprocess, sys
 
+import built
+
 KINDS = [
     ("reference", [], 60),
     ("no-shadows", ["--variant", "no-shadows"], 5),
@@ -33,10 +35,12 @@ def main():
     parser.add_argument("--students", type=int, default=300)
     parser.add_argument("--size", type=int, nargs=2, default=[640, 480])
     parser.add_argument("--out", required=True)
-    parser.add_argument("--binary", default="target/release/legacy-rt")
+    parser.add_argument("--binary", default=None, help="default: the release build (bench/built.py)")
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("scenes", nargs="+")
     args = parser.parse_args()
+    if args.binary is None:
+        args.binary = built.built("release")
     if os.path.exists(args.out):
         sys.exit(f"{args.out} exists: give a new folder")
     scenes_dir = os.path.join(args.out, "scenes")

@@ -28,7 +28,9 @@ if ! command -v povray >/dev/null || ! command -v tachyon >/dev/null; then
 fi
 
 cargo build --release --locked --bin legacy-rt >&2
-out="target/bench"
+# Where cargo put it (CARGO_TARGET_DIR or target/), and a folder for the bench's files.
+binary="$(python3 bench/built.py release)"
+out="$(dirname "$(dirname "$binary")")/bench"
 mkdir -p "$out"
 cargo run --release --locked -q --example scaling -- --scene 1000 > "$out/many.txt"
 
@@ -46,8 +48,8 @@ for pair in "spec1:$course" "gallery:examples/quadrics_gallery.txt" "many:$out/m
     # POV-Ray writes its image into the current folder (its default file-access policy
     # allows that); +WT1 one thread, -A no anti-aliasing, -D no display, -GA quiet.
     python3 bench/alternate.py --runs "$RUNS" \
-        "legacy-rt=target/release/legacy-rt $WIDTH $HEIGHT < $legacy > $out/$name.ppm" \
-        "povray=cd $out && povray +I../../bench/$name.pov +O$name-pov.png +W$WIDTH +H$HEIGHT +WT1 -A -D -GA"
+        "legacy-rt=$binary $WIDTH $HEIGHT < $legacy > $out/$name.ppm" \
+        "povray=cd $out && povray +I$PWD/bench/$name.pov +O$name-pov.png +W$WIDTH +H$HEIGHT +WT1 -A -D -GA"
 done
 
 # Tachyon: the twins of bench/tachyon_twins.py, shadows on (-fullshade), no
@@ -56,6 +58,6 @@ python3 bench/tachyon_twins.py "$out"
 for name in twin_small twin_many; do
     echo "$name (legacy-rt vs Tachyon, bench/tachyon_twins.py)"
     python3 bench/alternate.py --runs "$RUNS" \
-        "legacy-rt=target/release/legacy-rt $WIDTH $HEIGHT < $out/$name.txt > $out/$name-twin.ppm" \
+        "legacy-rt=$binary $WIDTH $HEIGHT < $out/$name.txt > $out/$name-twin.ppm" \
         "tachyon=tachyon $out/$name.dat -res $WIDTH $HEIGHT -numthreads 1 -aasamples 0 -fullshade -format PPM -o $out/$name-tachyon.ppm"
 done

@@ -16,7 +16,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 command -v valgrind > /dev/null || { echo "bench/floor.sh needs valgrind (apt-get install valgrind)" >&2; exit 2; }
-binary="${BINARY:-target/release/legacy-rt}"
+binary="${BINARY:-$(python3 bench/built.py release)}"
 if [ -z "${BINARY:-}" ]; then cargo build --release --locked --bin legacy-rt >&2; fi
 out="target/bench"
 mkdir -p "$out"

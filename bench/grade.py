@@ -10,6 +10,8 @@ extrapolated; grade is then timed over the whole class.
 """
 import argparse, os, resource, subprocess, tempfile, time
 
+import built
+
 
 def cpu_seconds():
     usage = resource.getrusage(resource.RUSAGE_CHILDREN)
@@ -26,10 +28,12 @@ def timed(command, **kwargs):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--class", dest="folder", required=True)
-    parser.add_argument("--binary", default="target/release/legacy-rt")
+    parser.add_argument("--binary", default=None, help="default: the release build (bench/built.py)")
     parser.add_argument("--threads", type=int, default=0)
     parser.add_argument("--loop-students", type=int, default=20)
     args = parser.parse_args()
+    if args.binary is None:
+        args.binary = built.built("release")
     binary = os.path.abspath(args.binary)
     scenes = os.path.join(args.folder, "scenes")
     subs = os.path.join(args.folder, "submissions")

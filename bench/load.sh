@@ -9,7 +9,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 RUNS="${RUNS:-5}"
-binary="${1:-target/release/legacy-rt}"
+binary="${1:-$(python3 bench/built.py release)}"
 if [ -z "${1:-}" ]; then cargo build --release --locked --bin legacy-rt >&2; fi
 out="target/bench"
 mkdir -p "$out"

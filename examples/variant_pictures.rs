@@ -74,6 +74,18 @@ fn write_table() {
 }
 
 fn main() {
+    // The course's scenes show most variants: without them, say so instead of failing
+    // half-way.
+    let course = std::path::Path::new("../shared/course-scenes");
+    if !course.is_dir() {
+        eprintln!(
+            "variant_pictures draws most variants on the course's scenes, which it reads from \
+             {} (beside the repository, as the course hands them out): put them there, and \
+             run it from the repository's folder",
+            course.display()
+        );
+        std::process::exit(1);
+    }
     write_table();
     let (w, h) = TILE;
     let variants: Vec<Variant> = Variant::all().collect();

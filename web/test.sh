@@ -22,10 +22,13 @@ fi
 # Built with a target directory of its own, as a user's CARGO_TARGET_DIR may be: the
 # script asks cargo where the .wasm went (it once read a fixed path).
 CARGO_TARGET_DIR="$web/wasm/target/elsewhere" web/build.sh
-# The command line the page must agree with, target/debug/legacy-rt: built as
+# The command line the page must agree with, the debug build: built as
 # `cargo test` builds it (the same features), so that after `cargo test` this is no work.
 cargo test --locked --no-run
 if [[ " $* " == *" --bench "* ]]; then
   cargo build --locked --release --bin legacy-rt
 fi
+# Where cargo put them: target/ or the user's CARGO_TARGET_DIR.
+export LEGACY_RT="${LEGACY_RT:-$(python3 bench/built.py debug)}"
+export LEGACY_RT_RELEASE="${LEGACY_RT_RELEASE:-$(python3 bench/built.py release)}"
 node web/test/e2e.mjs "$@"

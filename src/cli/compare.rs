@@ -5,7 +5,7 @@
 
 use super::io::{MAX_INPUT, emit_to_stdout, open_regular, read_all, same_file, text_of};
 use super::render::write_image;
-use super::{Failure, HowArgs, check_stdout, output_file, pixels, size, threads};
+use super::{Failure, HowArgs, output_file, pixels, size, threads};
 use legacy_rt::compare::read::{Content, DEFAULT_MAX_PIXELS, content};
 use legacy_rt::compare::{self, Settings, Tolerance, Verdict};
 use legacy_rt::error::escaped;
@@ -183,6 +183,28 @@ pub(super) fn read_image(
         .map_err(|message| Failure(message, 2))
 }
 
+/// Refuses a `--diff` path that is a symbolic link (dangling or not) or names something
+/// other than a regular file (a FIFO would hang the write, a device take it): a grader
+/// who writes the diff into a student's folder must not write through the student's
+/// link, nor create the file it points at. `-o`, for the user's own files, follows links.
+fn diff_target(path: &std::path::Path) -> Result<(), Failure> {
+    let shown = escaped(&path.display().to_string());
+    let refuse = |what: &str| {
+        Err(Failure(
+            format!(
+                "error: --diff {shown} is {what}: the diff image is written only to a new or regular file"
+            ),
+            2,
+        ))
+    };
+    match std::fs::symlink_metadata(path) {
+        Ok(meta) if meta.file_type().is_symlink() => refuse("a symbolic link"),
+        Ok(meta) if meta.is_dir() => refuse("a folder"),
+        Ok(meta) if !meta.is_file() => refuse("not a regular file (a pipe, socket or device)"),
+        _ => Ok(()),
+    }
+}
+
 /// Compares; `Ok(true)` when the images match.
 pub fn run(args: &CompareArgs) -> Result<bool, Failure> {
     // Every failure of `compare` is exit 2, whatever it would be for rendering.
@@ -190,7 +212,6 @@ pub fn run(args: &CompareArgs) -> Result<bool, Failure> {
 }
 
 fn run_inner(args: &CompareArgs) -> Result<bool, Failure> {
-    check_stdout()?;
     if let Some(diff) = &args.diff
         && (same_file(diff, &args.student) || same_file(diff, &args.reference))
     {
@@ -203,6 +224,9 @@ fn run_inner(args: &CompareArgs) -> Result<bool, Failure> {
             ),
             2,
         ));
+    }
+    if let Some(diff) = &args.diff {
+        diff_target(diff)?;
     }
     let diff = output_file(args.diff.as_deref())?;
     args.how.check()?;

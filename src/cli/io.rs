@@ -79,31 +79,15 @@ pub fn stdin_name() -> Option<String> {
     }
 }
 
-/// Fails when standard output was closed at start: checked before any work, so that a
-/// run whose output has nowhere to go fails at once instead of rendering into nothing.
-pub fn check_stdout() -> Result<(), Failure> {
-    match stdout_was_closed() {
-        true => Err(Failure(
-            "error: standard output is closed, so the output has nowhere to go: \
-             redirect it (> out.ppm) or give -o FILE. (A /dev/null opened for reading and \
-             writing, as Python's subprocess.DEVNULL opens it, looks the same to a \
-             program: to discard the output, open /dev/null for writing only, as \
-             > /dev/null does, or in Python stdout=open(os.devnull, \"wb\").)"
-                .to_string(),
-            2,
-        )),
-        false => Ok(()),
-    }
-}
-
-/// Writes `bytes` to standard output; standard output closed is an error that says so.
+/// Writes `bytes` to standard output. A standard output closed at start is /dev/null
+/// (Rust's runtime opens it there) and takes the bytes as `> /dev/null` does; one that
+/// fails a write is an error that says so.
 pub fn emit_to_stdout(bytes: &[u8]) -> Result<(), Failure> {
     emit_pieces_to_stdout(&[bytes])
 }
 
 /// Writes `pieces` to standard output one after the other, as [`emit_to_stdout`].
 pub fn emit_pieces_to_stdout(pieces: &[&[u8]]) -> Result<(), Failure> {
-    check_stdout()?;
     match legacy_rt::image_output::write(&mut std::io::stdout().lock(), pieces) {
         Ok(()) => Ok(()),
         // The reader went away (`| head`): end quietly.
@@ -112,39 +96,6 @@ pub fn emit_pieces_to_stdout(pieces: &[&[u8]]) -> Result<(), Failure> {
             format!("error: cannot write to standard output: {error}"),
             2,
         )),
-    }
-}
-
-/// Whether the program was started with standard output closed (`>&-`). Rust's runtime
-/// then opens /dev/null read-write in its place before `main`, and every write succeeds
-/// into nothing; a user's own `> /dev/null` opens it write-only. So: descriptor 1 is
-/// /dev/null (character device 1:3), opened read-write.
-fn stdout_was_closed() -> bool {
-    #[cfg(target_os = "linux")]
-    {
-        use std::os::fd::AsRawFd;
-        use std::os::unix::fs::{FileTypeExt, MetadataExt};
-        let fd = std::io::stdout().as_raw_fd();
-        // SAFETY: F_GETFL reads the descriptor's flags and changes nothing.
-        let flags = unsafe { libc::fcntl(fd, libc::F_GETFL) };
-        if flags == -1 {
-            return true;
-        }
-        if flags & libc::O_ACCMODE != libc::O_RDWR {
-            return false;
-        }
-        let Ok(null) = std::fs::metadata("/dev/null") else {
-            return false;
-        };
-        // The descriptor's own metadata, through /proc (no unsafe fstat needed).
-        let Ok(own) = std::fs::metadata(format!("/proc/self/fd/{fd}")) else {
-            return false;
-        };
-        own.file_type().is_char_device() && own.rdev() == null.rdev()
-    }
-    #[cfg(not(target_os = "linux"))]
-    {
-        false
     }
 }
 

@@ -16,8 +16,6 @@ use legacy_rt::shapes::kernel::KernelChoice;
 use std::io::Write;
 use std::path::PathBuf;
 
-pub use io::check_stdout;
-
 /// The largest image, in pixels (16384 x 16384), so that an absurd size is an error and
 /// not an allocation failure.
 const MAX_PIXELS: u64 = 1 << 28;

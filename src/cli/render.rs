@@ -2,7 +2,7 @@
 
 use super::interrupt;
 use super::io::{emit_pieces_to_stdout, emit_to_stdout, read_scene};
-use super::{Failure, RenderArgs, check_stdout, output_file, say, size, usage};
+use super::{Failure, RenderArgs, output_file, say, size, usage};
 use legacy_rt::image_output::file::OutputFile;
 use legacy_rt::image_output::{self, Format};
 use legacy_rt::render::{self, Show, object_colour};
@@ -18,9 +18,6 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
         ));
     }
     let output = output_file(args.output.as_deref().filter(|_| !args.dump))?;
-    if output.is_none() {
-        check_stdout()?;
-    }
     args.how.check()?;
     let text = read_scene()?;
     let scene = legacy_rt::load(&text).map_err(|error| Failure(error.to_string(), 1))?;

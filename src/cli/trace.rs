@@ -3,7 +3,7 @@
 
 use super::io::{emit_to_stdout, open_regular, read_scene, stdin_name};
 use super::render::{render_with_progress, write_image};
-use super::{Failure, HowArgs, check_stdout, output_file, pixels, size, usage};
+use super::{Failure, HowArgs, output_file, pixels, size, usage};
 use std::path::{Path, PathBuf};
 
 /// Examples for `trace --help`.
@@ -80,7 +80,6 @@ const MARK: [u8; 3] = [0, 255, 0];
 
 /// Traces the pixel of the scene on standard input, or reads a student's trace.
 pub fn run(args: &TraceArgs) -> Result<(), Failure> {
-    check_stdout()?;
     let numbers: Vec<u64> = [args.x, args.y, args.width, args.height]
         .into_iter()
         .flatten()

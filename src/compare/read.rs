@@ -130,7 +130,11 @@ pub fn read_image_from(
             check_palette(&mut reader)?;
             rewind(&mut reader)?;
             let limits = decoder_limits(max_pixels);
-            let decoder = guarded(|| PngDecoder::with_limits(reader, limits))?.map_err(decoding)?;
+            // The decoder sees only the chunks the pixels need: it keeps text chunks
+            // whatever their number, and 10 million tiny ones took it 1.4 GB.
+            let pixels_only = std::io::BufReader::new(PixelChunks::new(reader));
+            let decoder =
+                guarded(|| PngDecoder::with_limits(pixels_only, limits))?.map_err(decoding)?;
             decode(decoder, max_pixels)
         }
         Content::OtherImage(name) => Err(ReadError::Unsupported(name)),
@@ -192,6 +196,104 @@ fn check_palette(reader: &mut impl Read) -> Result<(), ReadError> {
                     return Ok(());
                 }
             }
+        }
+    }
+}
+
+/// A PNG as a stream of the chunks its pixels need (IHDR, PLTE, tRNS, IDAT, IEND, and any
+/// other critical chunk): the ancillary ones (text, time, colour profiles, animation) are
+/// skipped as they are read, so that memory stays bounded by the image and time linear
+/// in the file, whatever a file holds besides its pixels. Each chunk kept is passed on
+/// whole, with its CRC, so the stream is a PNG the decoder checks as before.
+struct PixelChunks<R> {
+    inner: R,
+    /// The header of the chunk being passed on, and how much of it is passed on.
+    header: [u8; 8],
+    header_sent: usize,
+    /// Bytes of the chunk being passed on still to come from `inner` (data, CRC).
+    passing: u64,
+    /// Whether the signature has been passed on.
+    started: bool,
+    /// Bytes handed out so far (for `stream_position`).
+    position: u64,
+}
+
+impl<R: Read> PixelChunks<R> {
+    fn new(inner: R) -> PixelChunks<R> {
+        PixelChunks {
+            inner,
+            header: [0; 8],
+            header_sent: 8,
+            passing: 0,
+            started: false,
+            position: 0,
+        }
+    }
+
+    /// Reads up to the next chunk to pass on, skipping ancillary ones, and holds its
+    /// header; `false` at the end of the file (or of what is left of it).
+    fn next_chunk(&mut self) -> std::io::Result<bool> {
+        loop {
+            let mut header = [0u8; 8];
+            if read_up_to(&mut self.inner, &mut header)? < 8 {
+                return Ok(false);
+            }
+            let length = u64::from(u32::from_be_bytes([
+                header[0], header[1], header[2], header[3],
+            ]));
+            // Bit 5 of a chunk type's first byte: set for ancillary chunks (PNG spec 5.4).
+            let ancillary = header[4] & 0x20 != 0;
+            if !ancillary || &header[4..8] == b"tRNS" {
+                (self.header, self.header_sent, self.passing) = (header, 0, length + 4);
+                return Ok(true);
+            }
+            let skip = length + 4;
+            if std::io::copy(&mut (&mut self.inner).take(skip), &mut std::io::sink())? < skip {
+                return Ok(false);
+            }
+        }
+    }
+}
+
+impl<R: Read> Read for PixelChunks<R> {
+    fn read(&mut self, buffer: &mut [u8]) -> std::io::Result<usize> {
+        if buffer.is_empty() {
+            return Ok(0);
+        }
+        if !self.started {
+            // The 8-byte signature passes as it is, then the chunks.
+            self.started = true;
+            self.passing = 8;
+        }
+        if self.passing == 0 && self.header_sent == 8 && !self.next_chunk()? {
+            return Ok(0);
+        }
+        let n = if self.header_sent < 8 {
+            let n = (8 - self.header_sent).min(buffer.len());
+            buffer[..n].copy_from_slice(&self.header[self.header_sent..self.header_sent + n]);
+            self.header_sent += n;
+            n
+        } else {
+            let most = buffer
+                .len()
+                .min(usize::try_from(self.passing).unwrap_or(usize::MAX));
+            let n = self.inner.read(&mut buffer[..most])?;
+            self.passing -= n as u64;
+            n
+        };
+        self.position += n as u64;
+        Ok(n)
+    }
+}
+
+impl<R> Seek for PixelChunks<R> {
+    /// Only where the stream is: the decoder's bound asks for Seek, and it never moves.
+    fn seek(&mut self, to: SeekFrom) -> std::io::Result<u64> {
+        match to {
+            SeekFrom::Current(0) => Ok(self.position),
+            _ => Err(std::io::Error::other(
+                "a PNG's pixel chunks are read in order",
+            )),
         }
     }
 }
@@ -321,6 +423,53 @@ mod tests {
 
     fn pixels(image: &Image) -> Vec<[u8; 3]> {
         image.pixels.clone()
+    }
+
+    /// `png` with `count` copies of the ancillary chunk `kind` (CRC left 0: the decoder
+    /// never sees it) inserted before its first IDAT.
+    fn flooded(png: &[u8], kind: &[u8; 4], count: usize) -> Vec<u8> {
+        let at = png.windows(4).position(|w| w == b"IDAT").unwrap() - 4;
+        let mut out = png[..at].to_vec();
+        for _ in 0..count {
+            out.extend_from_slice(&5u32.to_be_bytes());
+            out.extend_from_slice(kind);
+            out.extend_from_slice(b"k\0\0\0\0");
+            out.extend_from_slice(&[0; 4]);
+        }
+        out.extend_from_slice(&png[at..]);
+        out
+    }
+
+    #[test]
+    fn a_png_s_ancillary_chunks_are_skipped_and_its_pixels_read() {
+        let image = Image {
+            width: 3,
+            height: 2,
+            pixels: vec![
+                [1, 2, 3],
+                [4, 5, 6],
+                [7, 8, 9],
+                [10, 11, 12],
+                [13, 14, 15],
+                [16, 17, 18],
+            ],
+        };
+        let png = crate::image_output::png(&image).unwrap();
+        for kind in [b"tEXt", b"iTXt", b"zTXt", b"tIME"] {
+            let read = read_image(&flooded(&png, kind, 1000)).unwrap();
+            assert_eq!(read, image);
+        }
+        // Read through a reader that hands out a byte at a time: every header and chunk
+        // is passed on whole however the reads fall.
+        let mut stream = PixelChunks::new(Cursor::new(flooded(&png, b"tEXt", 3)));
+        let mut out = Vec::new();
+        let mut byte = [0u8; 1];
+        while stream.read(&mut byte).unwrap() == 1 {
+            out.push(byte[0]);
+        }
+        assert_eq!(out, png);
+        assert_eq!(stream.stream_position().unwrap(), png.len() as u64);
+        assert!(stream.seek(SeekFrom::Start(0)).is_err());
     }
 
     #[test]

@@ -108,18 +108,18 @@ impl OutputFile {
     }
 
     /// Writes `pieces` one after the other, whole or not at all where the target allows
-    /// it. `temporary` is told the temporary file's path while it exists (`Some`) and
-    /// when it is gone (`None`), so that an interrupt handler can remove it.
+    /// it. `temporary` is told of the temporary file ([`Temporary`]), so that an
+    /// interrupt handler can remove it.
     pub fn write(
         &self,
         pieces: &[&[u8]],
-        temporary: impl Fn(Option<&Path>),
+        temporary: impl Fn(&Path, Temporary),
     ) -> Result<(), OutputError> {
         let io_error = |error| OutputError::Io(self.shown.clone(), error);
         match &self.how {
             How::InPlace(path) => write_in_place(path, pieces).map_err(io_error),
             How::Replace { path, existing } => {
-                let partial = match create_beside(path) {
+                let partial = match create_beside(path, &temporary) {
                     Ok(partial) => partial,
                     // A folder we may not create in, holding a file we may write: write it
                     // as the shell would.
@@ -131,9 +131,9 @@ impl OutputFile {
                     }
                     Err(error) => return Err(io_error(error)),
                 };
-                temporary(Some(&partial.1));
+                let temporary_path = partial.1.clone();
                 let result = fill_and_rename(partial, path, pieces, existing.as_ref());
-                temporary(None);
+                temporary(&temporary_path, Temporary::Gone);
                 result.map_err(io_error)
             }
         }
@@ -143,9 +143,27 @@ impl OutputFile {
 /// Replaces (or creates) the file at `path` with `bytes`, whole or not at all: written
 /// to a new file beside it, then renamed over it. Whatever `path` was (a symbolic or hard
 /// link, a file of other permissions) is replaced, never written through: what `grade`
-/// needs for the files of its report folder.
-pub fn replace(path: &Path, bytes: &[u8]) -> io::Result<()> {
-    fill_and_rename(create_beside(path)?, path, &[bytes], None)
+/// needs for the files of its report folder. `temporary` is told of the temporary file
+/// as [`OutputFile::write`] tells it.
+pub fn replace(path: &Path, bytes: &[u8], temporary: impl Fn(&Path, Temporary)) -> io::Result<()> {
+    let partial = create_beside(path, &temporary)?;
+    let temporary_path = partial.1.clone();
+    let result = fill_and_rename(partial, path, &[bytes], None);
+    temporary(&temporary_path, Temporary::Gone);
+    result
+}
+
+/// What becomes of a temporary file, as an interrupt handler needs to hear it: told
+/// before the file is created and after, an interrupt that comes in between is not
+/// missed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Temporary {
+    /// It is about to be created (a handler may hold this off while it cleans up).
+    Creating,
+    /// The attempt to create it is over (it exists, or it could not be created).
+    Created,
+    /// It is renamed over its target, removed, or was never created.
+    Gone,
 }
 
 /// Fills the new file `partial` and renames it to `path`; removed if that fails.
@@ -185,23 +203,32 @@ fn write_in_place(path: &Path, pieces: &[&[u8]]) -> io::Result<()> {
 }
 
 /// A new, empty file in the folder of `path`, named after it and this process, that
-/// did not exist before (so that no other file is ever overwritten by it).
-fn create_beside(path: &Path) -> io::Result<(File, PathBuf)> {
+/// did not exist before (so that no other file is ever overwritten by it); `temporary` is
+/// told of each name tried.
+fn create_beside(
+    path: &Path,
+    temporary: &impl Fn(&Path, Temporary),
+) -> io::Result<(File, PathBuf)> {
     let name = path.file_name().unwrap_or_default().to_string_lossy();
     let folder = path.parent().unwrap_or(Path::new(""));
     let mut attempt = 0;
     loop {
         let partial = folder.join(format!(".{name}.{}-{attempt}.partial", std::process::id()));
-        match OpenOptions::new()
+        temporary(&partial, Temporary::Creating);
+        let created = OpenOptions::new()
             .write(true)
             .create_new(true)
-            .open(&partial)
-        {
+            .open(&partial);
+        temporary(&partial, Temporary::Created);
+        match created {
             Ok(file) => return Ok((file, partial)),
-            Err(error) if error.kind() == io::ErrorKind::AlreadyExists && attempt < 100 => {
-                attempt += 1;
+            Err(error) => {
+                temporary(&partial, Temporary::Gone);
+                match error.kind() == io::ErrorKind::AlreadyExists && attempt < 100 {
+                    true => attempt += 1,
+                    false => return Err(error),
+                }
             }
-            Err(error) => return Err(error),
         }
     }
 }

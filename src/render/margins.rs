@@ -170,6 +170,57 @@ pub(crate) struct Margins<'s, 'a, const PATHS: bool> {
     nearest_miss: f64,
     /// What the path involves, for `compare --diagnose` (src/render/reach.rs).
     pub(crate) paths: Paths,
+    /// The error the current ray carries, in units of the precision: how far its base may
+    /// be off (a length) and its direction (an angle). A camera ray's are its base's size
+    /// and 1, which the margins' sizes hold; a mirror's grow with each bounce ([`Spread`]).
+    spread: Spread,
+    /// The excess of the current query's error over a fresh ray's, added to the size of
+    /// a decision at distance t as excess.0 + t · excess.1: zero but past a mirror.
+    excess: (f64, f64),
+    /// The current hit point's error (a length) and its normal's (an angle), in units of
+    /// the precision.
+    hit_error: f64,
+    normal_error: f64,
+    /// Whether the current ray is a mirror's.
+    mirrored: bool,
+    /// cos θ of the current light.
+    light_cos: f64,
+    /// The error of the current mirror segment's intensity, and of the colour from the
+    /// mirrors' segments, in units of the precision (absolute, per channel).
+    intensity_error: DVec3,
+    pub(crate) colour_error: DVec3,
+}
+
+/// The error a ray carries into its query, in units of the precision (the ray
+/// differentials of docs/compare.md): its base's (a length) and its direction's (an
+/// angle).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Spread {
+    base: f64,
+    dir: f64,
+}
+
+impl Spread {
+    /// A ray from `base` along a direction known to the precision: the camera's.
+    fn fresh(base: f64) -> Spread {
+        Spread { base, dir: 1.0 }
+    }
+
+    /// The error of the point at distance `t` along the ray, found from a root whose
+    /// error is `root` (its spread, or t for a plane's).
+    fn at(self, t: f64, root: f64) -> f64 {
+        self.base + t.abs() * self.dir + root
+    }
+
+    /// The ray reflected at a point off by `point_error` where the normal is off by
+    /// `normal_error`: R = D - 2 (D·N) N turns with D one for one, and with N at most four
+    /// times as much.
+    fn reflected(self, point_error: f64, normal_error: f64) -> Spread {
+        Spread {
+            base: point_error,
+            dir: self.dir + 4.0 * normal_error,
+        }
+    }
 }
 
 impl<'s, 'a, const PATHS: bool> Margins<'s, 'a, PATHS> {
@@ -189,6 +240,14 @@ impl<'s, 'a, const PATHS: bool> Margins<'s, 'a, PATHS> {
             surest_blocker: 0.0,
             nearest_miss: f64::INFINITY,
             paths: Paths::default(),
+            spread: Spread::fresh(0.0),
+            excess: (0.0, 0.0),
+            hit_error: 0.0,
+            normal_error: 0.0,
+            mirrored: false,
+            light_cos: 1.0,
+            intensity_error: DVec3::ZERO,
+            colour_error: DVec3::ZERO,
         }
     }
 
@@ -206,6 +265,17 @@ impl<'s, 'a, const PATHS: bool> Margins<'s, 'a, PATHS> {
     /// A new query along `ray`: a shadow ray's to a light at `shadow`, or a closest hit.
     fn start(&mut self, ray: &Ray, shadow: Option<f64>) {
         self.base = ray.base.abs().max_element();
+        // Past a mirror, what the ray's error has beyond a fresh ray's: a shadow ray's
+        // base is the hit point, its direction off by the point's error over the light's
+        // distance.
+        self.excess = match (self.mirrored, shadow) {
+            (false, _) => (0.0, 0.0),
+            (true, None) => (
+                (self.spread.base - self.base).max(0.0),
+                (self.spread.dir - 1.0).max(0.0),
+            ),
+            (true, Some(dist)) => ((self.hit_error - self.base).max(0.0), self.hit_error / dist),
+        };
         self.shadow = shadow;
         self.near.clear();
         self.nearest = [None; 2];
@@ -215,7 +285,11 @@ impl<'s, 'a, const PATHS: bool> Margins<'s, 'a, PATHS> {
 
     /// The size of a point at distance `t` on `object`'s equation.
     fn size(&self, object: usize, t: f64) -> f64 {
-        self.base + t.abs() + self.sizes.facts[object].anchor
+        let size = self.base + t.abs() + self.sizes.facts[object].anchor;
+        match self.mirrored {
+            false => size,
+            true => size + self.excess.0 + t.abs() * self.excess.1,
+        }
     }
 
     /// The smallest margin of `object`'s decisions in `notes`, and the t where it lies;
@@ -239,9 +313,17 @@ impl<'s, 'a, const PATHS: bool> Margins<'s, 'a, PATHS> {
         };
         for note in notes {
             match *note {
+                // Past a mirror, the ray's excess error moves the discriminant as it moves
+                // a point at the vertex: the margin shrinks by the sizes' ratio.
                 HitNote::Discriminant {
                     relative, vertex, ..
-                } => take(relative, 1.0, vertex),
+                } => match self.mirrored {
+                    false => take(relative, 1.0, vertex),
+                    true => {
+                        let fresh = self.base + vertex.abs() + facts.anchor;
+                        take(relative * fresh, size(vertex), vertex)
+                    }
+                },
                 HitNote::Nearer { t: Some(t) } | HitNote::QuadricRoot { t, .. } => {
                     take(t.abs(), size(t), t)
                 }
@@ -345,11 +427,17 @@ impl<'s, 'a, const PATHS: bool> Margins<'s, 'a, PATHS> {
         // of the two nearest hits but where a variant's ε or a box refused a nearer one;
         // then its condition is not known and not taken.
         let won = |entry: &Option<(usize, f64, f64)>| entry.filter(|e| Some(e.0) == winner);
+        let root = self.nearest.iter().find_map(won);
         // A root found without a spread (a plane's) leaves κ as it was.
-        if let Some((_, t, spread)) = self.nearest.iter().find_map(won)
+        if let Some((_, t, spread)) = root
             && spread != 0.0
         {
             self.kappa = self.kappa.max(spread / t.abs());
+        }
+        // The hit point's error: the ray's at t, and the root's own.
+        if let Some((_, t)) = hit {
+            let spread = root.map_or(0.0, |(_, _, spread)| spread);
+            self.hit_error = self.spread.at(t, spread.max(t.abs()));
         }
     }
 
@@ -417,12 +505,20 @@ impl<const PATHS: bool> Recorder for Margins<'_, '_, PATHS> {
     fn record(&mut self, event: impl FnOnce() -> Event) {
         match event() {
             Event::Segment {
-                ray, total_dist, ..
+                depth,
+                ray,
+                total_dist,
             } => {
                 if total_dist > 0.0 {
                     let max = self.sizes.max_dist;
                     self.take((total_dist - max).abs() / max);
                 }
+                self.mirrored = depth > 0;
+                self.spread = match self.mirrored {
+                    false => Spread::fresh(ray.base.abs().max_element()),
+                    true => self.spread.reflected(self.hit_error, self.normal_error),
+                };
+                self.intensity_error = DVec3::ZERO;
                 self.start(&ray, None);
             }
             Event::CutOff { total_dist } => {
@@ -443,6 +539,10 @@ impl<const PATHS: bool> Recorder for Margins<'_, '_, PATHS> {
                 ..
             } => {
                 self.point = surface.point;
+                let curvature = self.sizes.scene.objects[object]
+                    .shape
+                    .curvature(surface.point);
+                self.normal_error = curvature * self.hit_error + 1.0;
                 if !matches!(pattern, PatternNote::Plain) {
                     self.pattern(object, t, &surface);
                 }
@@ -452,8 +552,34 @@ impl<const PATHS: bool> Recorder for Margins<'_, '_, PATHS> {
                 light,
                 contribution,
                 ..
-            } if PATHS && contribution != DVec3::ZERO => self.paths.lit(light),
-            Event::Light(LightStep::Towards { dist, .. }) => self.light_dist = dist,
+            } => {
+                if PATHS && contribution != DVec3::ZERO {
+                    self.paths.lit(light);
+                }
+                if self.mirrored && contribution != DVec3::ZERO {
+                    // diffuse × emissivity × cos θ / dist at a point off by the hit's
+                    // error, with the normal off by its own: cos θ moves by the normal's
+                    // error and the direction's (the point's over the distance), the
+                    // distance by the point's.
+                    let along = self.hit_error / self.light_dist;
+                    let relative = (self.normal_error + along) / self.light_cos + along;
+                    self.intensity_error += contribution.abs() * relative;
+                }
+            }
+            Event::Divided {
+                total_dist,
+                seen,
+                weight,
+                ..
+            } if self.mirrored => {
+                // I / total_dist, the path's length off by the hit's error.
+                let error = (self.intensity_error + seen.abs() * self.hit_error) / total_dist;
+                self.colour_error += weight.abs() * error;
+            }
+            Event::Light(LightStep::Towards { dist, cos, .. }) => {
+                self.light_dist = dist;
+                self.light_cos = cos;
+            }
             Event::Light(LightStep::Spot { along, .. }) => {
                 let light = &self.sizes.scene.lights[self.light];
                 if let Some(beam) = &light.beam {

@@ -620,8 +620,21 @@ fn margins_of<const PATHS: bool, B: Rulebook>(
             // mirrors.
             // A byte is fragile where its margin, over that many, is below the precision.
             let limit = precision * (COLOUR_ROUNDINGS * rec.kappa);
-            let fragile = |c: f64| setup.rules.bytes.fragile(c, limit);
-            let bytes = [fragile(colour.x), fragile(colour.y), fragile(colour.z)];
+            // Past a mirror the colour also carries the error its path's points and
+            // normals grew by: relative to the channel, and over as many roundings.
+            let fragile = |c: f64, error: f64| {
+                let limit = match error > 0.0 {
+                    false => limit,
+                    true => limit + precision * COLOUR_ROUNDINGS * error / c,
+                };
+                setup.rules.bytes.fragile(c, limit)
+            };
+            let error = rec.colour_error;
+            let bytes = [
+                fragile(colour.x, error.x),
+                fragile(colour.y, error.y),
+                fragile(colour.z, error.z),
+            ];
             let fragility = Fragility::of(rec.least, bytes, precision);
             let first = FirstHit::of(rec.first.flatten());
             let bytes = setup.rules.bytes(colour);

@@ -404,7 +404,25 @@ fn texture(record: &Record, size: DVec2, files: &dyn Files) -> Result<Pattern, R
 fn read_texture(path: &str, files: &dyn Files) -> Result<Texture, String> {
     use image::ImageDecoder;
     use image::codecs::pnm::{PnmDecoder, PnmSubtype, SampleEncoding};
-    let mut decoder = PnmDecoder::new(files.open(path)?).map_err(|e| e.to_string())?;
+    use std::io::{BufRead, Read};
+    // The file is whatever the scene names (any file of the machine running it): the
+    // messages say what is wrong in words of their own, never quoting its bytes.
+    let mut reader = files.open(path)?;
+    let mut magic = [0u8; 2];
+    let start = reader.fill_buf().map_err(|e| e.to_string())?;
+    let seen = start.len().min(2);
+    magic[..seen].copy_from_slice(&start[..seen]);
+    if &magic != b"P6" {
+        return Err("it is not a binary P6 PPM (its first bytes are not P6)".into());
+    }
+    let damaged = |error: image::ImageError| match error {
+        image::ImageError::IoError(error) if error.kind() == std::io::ErrorKind::UnexpectedEof => {
+            "it is cut short".to_string()
+        }
+        image::ImageError::Limits(_) => "it is larger than this program accepts".to_string(),
+        _ => "its P6 header or texels are damaged".to_string(),
+    };
+    let mut decoder = PnmDecoder::new(reader.by_ref()).map_err(damaged)?;
     if decoder.subtype() != PnmSubtype::Pixmap(SampleEncoding::Binary) {
         return Err("it is not a binary P6 PPM".into());
     }
@@ -416,9 +434,9 @@ fn read_texture(path: &str, files: &dyn Files) -> Result<Texture, String> {
     }
     let mut limits = image::Limits::default();
     limits.max_alloc = Some(MAX_TEXELS * 8);
-    decoder.set_limits(limits).map_err(|e| e.to_string())?;
+    decoder.set_limits(limits).map_err(damaged)?;
     let image = image::DynamicImage::from_decoder(decoder)
-        .map_err(|e| e.to_string())?
+        .map_err(damaged)?
         .into_rgb8();
     let (width, height) = (width as usize, height as usize);
     if width == 0 || height == 0 {

@@ -217,6 +217,13 @@ impl AxisQuadric {
         frame.normal_to_world(self.gradient(frame.point_to_local(point)))
     }
 
+    /// |∇²f| / |∇f| at a world point: the Hessian is 2 diag(α), whose norm is 2 max |αi|
+    /// ([`super::Shape::curvature`]).
+    pub(crate) fn curvature(&self, point: DVec3) -> f64 {
+        let gradient = self.gradient(self.frame.point_to_local(point));
+        2.0 * self.alpha.abs().max_element() / gradient.length()
+    }
+
     /// The local gradient ∇f = (2αx Lx, 2αy Ly + β, 2αz Lz).
     #[inline]
     pub fn gradient(&self, local: DVec3) -> DVec3 {

@@ -407,6 +407,22 @@ impl Shape {
         }
     }
 
+    /// How fast the unit normal turns at `point` per unit of distance along the surface,
+    /// at most: |∇²f| / |∇f| (a sphere's 1/r, a plane's 0; infinite at a cone's apex).
+    /// A point found a distance δ off has its normal off by about δ times this: what a
+    /// mirror makes of the error its hit point carries (`compare`'s margins).
+    pub(crate) fn curvature(&self, point: DVec3) -> f64 {
+        match self {
+            Shape::Sphere(s) => 1.0 / s.radius,
+            Shape::Plane(_) | Shape::FinitePlane(_) | Shape::TiledPlane(_) => 0.0,
+            Shape::Paraboloid(s) => s.equation.curvature(point),
+            Shape::Cylinder(s) => s.equation.curvature(point),
+            Shape::Cone(s) => s.equation.curvature(point),
+            Shape::Hyperboloid(s) => s.equation.curvature(point),
+            Shape::Quadric(s) => s.curvature(point),
+        }
+    }
+
     /// Point and normal where `ray` meets this shape at distance `t` (from [`Shape::hit`]).
     #[inline(always)]
     pub fn surface(&self, ray: &Ray, t: f64) -> Surface {

@@ -200,6 +200,17 @@ impl Quadric {
         let gradient = (self.q * point.extend(1.0)).truncate();
         unit(gradient).unwrap_or(DVec3::ZERO)
     }
+
+    /// |∇²f| / |∇f| at `point`, bounded with M's Frobenius norm: the half-Hessian is M
+    /// and the half-gradient M (x - x0) + g0 ([`super::Shape::curvature`]).
+    pub(crate) fn curvature(&self, point: DVec3) -> f64 {
+        let m = &self.centred.second_order;
+        let frobenius =
+            (m.x_axis.length_squared() + m.y_axis.length_squared() + m.z_axis.length_squared())
+                .sqrt();
+        let gradient = *m * (point - self.centred.anchor) + self.centred.gradient;
+        frobenius / gradient.length()
+    }
 }
 
 #[cfg(test)]

@@ -172,10 +172,91 @@ fn all_scenes() -> Vec<PathBuf> {
     scenes
 }
 
+/// The sizes a correct tracer must pass at: the course's, odd ones, a large one.
+const SIZES: [(u32, u32); 4] = [(200, 150), (333, 250), (640, 480), (801, 601)];
+
+/// A chain of mirror spheres `gap` apart in a row of `count` (radius `r`), staggered in
+/// depth, over a floor, lit by two lights: a reflected ray meets the next sphere a
+/// hair away, and the error a single-precision tracer's ray carries grows at each
+/// bounce.
+fn mirror_chain(count: usize, r: f64, gap: f64) -> String {
+    let mut text =
+        String::from("8 6\n0 0 3\n\n14 floor\n0.5 0.5 0.5\n3 3 3\n0 0 0\n0 1 0\n0 -3 0\n\n");
+    text += "10\n6 6 6\n-3 4 2\n\n10\n4 3 2\n3 2 -1\n\n";
+    for i in 0..count {
+        for j in 0..3 {
+            let x = -3.4 + i as f64 * (2.0 * r + gap);
+            let y = -2.2 + j as f64 * (2.0 * r + gap);
+            let z = -6.0 - 0.3 * ((i + j) % 2) as f64;
+            text += &format!("13 mirror\n0.2 0.1 0.3\n1 1.5 2\n0.9 0.8 0.7\n{x} {y} {z}\n{r}\n\n");
+        }
+    }
+    text
+}
+
+/// Whether a tracer with `kernel` passes `scene` at `size`, every difference fragile;
+/// the case in words where it does not.
+fn passes(scene: &Path, size: (u32, u32), kernel: &str, dir: &Path) -> Result<(), String> {
+    let name = scene.file_stem().unwrap().to_str().unwrap();
+    let student = dir.join(format!("{name}-{kernel}-{}.ppm", size.0));
+    render(scene, size, &["--kernel", kernel], &student);
+    let (status, json) = report(&[scene.to_str().unwrap(), student.to_str().unwrap()]);
+    let case = format!("{name} {}x{} with {kernel}: {json}", size.0, size.1);
+    let fragile = json["differing_fragile_pixels"] == json["differing_pixels"];
+    match (status, fragile) {
+        (0, true) => Ok(()),
+        _ => Err(case),
+    }
+}
+
 #[test]
+fn a_single_precision_tracer_passes_a_chain_of_close_mirrors() {
+    let dir = folder("mirror-chain");
+    let scene = dir.join("chain.txt");
+    std::fs::write(&scene, mirror_chain(5, 0.8, 0.05)).unwrap();
+    // A correct tracer in single precision: its reflected rays carry its error from
+    // mirror to mirror (issue 44: 5 pixels were counted at 640x480 before the margins
+    // followed it along the path).
+    for size in SIZES {
+        passes(&scene, size, "textbook-f32", &dir).unwrap();
+    }
+    // The same tracer with one sphere casting no shadow (the first, on line 19, just
+    // over the floor), and with one bounce only: they fail.
+    for mistake in ["no-shadow@19", "one-bounce"] {
+        let student = dir.join("mistake.ppm");
+        render(
+            &scene,
+            (640, 480),
+            &["--kernel", "textbook-f32", "--variant", mistake],
+            &student,
+        );
+        let (status, json) = report(&[scene.to_str().unwrap(), student.to_str().unwrap()]);
+        assert_eq!(status, 1, "{mistake}: {json}");
+        let counted = json["differing_pixels"].as_u64().unwrap()
+            - json["differing_fragile_pixels"].as_u64().unwrap();
+        assert!(counted > 100, "{mistake}: {json}");
+    }
+}
+
+/// The sweep of issue 25 and 44, behind `--ignored` (`.ci/run` runs it): every course
+/// scene, every example and generated mirror chains, the accurate kernel exactly, and a
+/// correct tracer in double or single precision at every size of [`SIZES`], every
+/// difference fragile.
+#[test]
+#[ignore = "a sweep of every scene at four sizes and three kernels: .ci/run runs it"]
 fn a_correct_tracer_passes_on_every_scene_with_every_difference_fragile() {
     let dir = folder("pass");
-    for scene in all_scenes() {
+    let mut scenes = all_scenes();
+    for (k, (count, r, gap)) in [(4, 0.6, 0.02), (6, 0.45, 0.1), (3, 1.0, 0.01)]
+        .into_iter()
+        .enumerate()
+    {
+        let chain = dir.join(format!("chain{k}.txt"));
+        std::fs::write(&chain, mirror_chain(count, r, gap)).unwrap();
+        scenes.push(chain);
+    }
+    let mut failures = Vec::new();
+    for scene in scenes {
         let name = scene.file_stem().unwrap().to_str().unwrap().to_string();
         // The accurate kernel is the reference: no pixel differs.
         let student = dir.join(format!("{name}-accurate.ppm"));
@@ -186,25 +267,15 @@ fn a_correct_tracer_passes_on_every_scene_with_every_difference_fragile() {
             (0, &0.into()),
             "{name}"
         );
-        // A correct student's tracer, in double or single precision, at the default size
-        // and at an odd one: it passes, and only because every pixel where it differs is
-        // one the reference is unsure of (issue 25).
         for kernel in ["textbook-f32", "textbook", "stable"] {
-            for (w, h) in [(640, 480), (333, 250)] {
-                let student = dir.join(format!("{name}-{kernel}-{w}.ppm"));
-                render(&scene, (w, h), &["--kernel", kernel], &student);
-                let args = [scene.to_str().unwrap(), student.to_str().unwrap()];
-                let (status, json) = report(&args);
-                let case = format!("{name} {w}x{h} with {kernel}: {json}");
-                assert_eq!(status, 0, "{case}");
-                assert_eq!(json["verdict"], "match", "{case}");
-                assert_eq!(
-                    json["differing_fragile_pixels"], json["differing_pixels"],
-                    "{case}"
-                );
+            for size in SIZES {
+                if let Err(case) = passes(&scene, size, kernel, &dir) {
+                    failures.push(case);
+                }
             }
         }
     }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
 /// Writes a binary PPM.

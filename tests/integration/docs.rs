@@ -433,3 +433,65 @@ fn the_readme_s_grading_example_is_what_the_program_prints() {
     assert!(folder.join("try/report/index.html").is_file());
     std::fs::remove_dir_all(&folder).unwrap();
 }
+
+/// The commands the docs give find what they need wherever a newcomer's setup puts it:
+/// the bench scripts and the browser test ask cargo where the binary is (a user's
+/// CARGO_TARGET_DIR moves it), and the pictures' example says what it needs instead of
+/// failing half-way.
+#[test]
+fn the_documented_commands_find_the_binary_and_say_what_they_need() {
+    let elsewhere = std::env::temp_dir().join("legacy-rt-elsewhere");
+    let output = std::process::Command::new("python3")
+        .args(["bench/built.py", "debug"])
+        .env("CARGO_TARGET_DIR", &elsewhere)
+        .current_dir(root())
+        .output()
+        .unwrap();
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let printed = String::from_utf8(output.stdout).unwrap();
+    assert_eq!(
+        printed.trim(),
+        elsewhere.join("debug/legacy-rt").to_str().unwrap()
+    );
+    // No script assumes the default target folder.
+    for folder in ["bench", "web"] {
+        for entry in std::fs::read_dir(root().join(folder)).unwrap() {
+            let path = entry.unwrap().path();
+            let script = path.extension().is_some_and(|e| e == "py" || e == "sh");
+            if !script {
+                continue;
+            }
+            let text = std::fs::read_to_string(&path).unwrap();
+            for fixed in ["target/release/legacy-rt", "target/debug/legacy-rt"] {
+                assert!(!text.contains(fixed), "{} names {fixed}", path.display());
+            }
+        }
+    }
+    // The example that draws docs/variants.png, run where there is no ../shared: it says
+    // so and stops. cargo test builds it beside this test's binary.
+    let examples = std::env::current_exe()
+        .unwrap()
+        .parent()
+        .unwrap()
+        .parent()
+        .unwrap()
+        .join("examples");
+    let example = examples.join("variant_pictures");
+    let scratch = std::env::temp_dir().join(format!("legacy-rt-no-shared-{}", std::process::id()));
+    std::fs::create_dir_all(scratch.join("repo")).unwrap();
+    let output = std::process::Command::new(&example)
+        .current_dir(scratch.join("repo"))
+        .output()
+        .unwrap_or_else(|e| panic!("{}: {e}", example.display()));
+    assert_eq!(output.status.code(), Some(1));
+    let message = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        message.contains("../shared/course-scenes") && !message.contains("panicked"),
+        "{message}"
+    );
+    std::fs::remove_dir_all(&scratch).unwrap();
+}

@@ -207,6 +207,14 @@ fn every_row_is_what_compare_says_of_its_pair() {
         .find(|r| r["student"] == "ada" && r["scene"] == "studio")
         .unwrap();
     assert_eq!(ada["file"], "subs/ada/studio.ppm");
+    // And a warning on that row, which the CSV and the page carry too: the PNG beside it
+    // is not graded.
+    let warning = ada["warning"].as_str().unwrap();
+    assert!(
+        warning.contains("ada/studio.png") && warning.contains("studio.ppm is"),
+        "{warning}"
+    );
+    assert!(rows.iter().filter(|r| r["warning"].is_string()).count() == 1);
 
     // The CSV says what the JSON says.
     let mut csv = csv::Reader::from_path(dir.join("report/grades.csv")).unwrap();
@@ -221,8 +229,15 @@ fn every_row_is_what_compare_says_of_its_pair() {
         "max_points",
     ];
     assert_eq!(headers.iter().take(7).collect::<Vec<_>>(), wanted);
+    assert_eq!(headers.iter().next_back(), Some("warning"));
     let records: Vec<csv::StringRecord> = csv.records().map(Result::unwrap).collect();
     assert_eq!(records.len(), rows.len());
+    for (record, row) in records.iter().zip(rows) {
+        assert_eq!(
+            &record[record.len() - 1],
+            row["warning"].as_str().unwrap_or("")
+        );
+    }
     for (record, row) in records.iter().zip(rows) {
         for (i, key) in wanted.iter().enumerate() {
             let json = match &row[key] {
@@ -305,8 +320,12 @@ fn a_required_size_makes_other_sizes_wrong_size() {
             assert_eq!(row["points"].as_f64(), Some(3.0));
         }
     }
-    // A scheme naming a scene SCENES lacks is refused, naming it.
-    fs::write(dir.join("typo.toml"), "[scenes.studoi]\npoints = 3\n").unwrap();
+    // A scheme naming a scene SCENES lacks is refused, naming it, the file and its line.
+    fs::write(
+        dir.join("typo.toml"),
+        "points = 1\n\n[scenes.studoi]\npoints = 3\n",
+    )
+    .unwrap();
     let refused = run_in(
         &dir,
         &[
@@ -320,7 +339,9 @@ fn a_required_size_makes_other_sizes_wrong_size() {
         ],
     );
     assert_eq!(refused.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&refused.stderr).contains("studoi"));
+    let message = String::from_utf8_lossy(&refused.stderr).into_owned();
+    assert!(message.contains("studoi"), "{message}");
+    assert!(message.contains("--scheme typo.toml (line 3)"), "{message}");
     fs::remove_dir_all(&dir).unwrap();
 }
 
@@ -476,5 +497,193 @@ fn grade_refuses_what_it_cannot_read_or_would_overwrite() {
     let absent = run_in(&dir, &["grade", "nowhere", "subs", "-o", "report"]);
     assert_eq!(absent.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&absent.stderr).contains("nowhere"));
+    fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The `.partial` files under `dir` (the report folder and its images/).
+fn partial_files(dir: &Path) -> Vec<PathBuf> {
+    let mut found = Vec::new();
+    for folder in [dir.to_path_buf(), dir.join("images")] {
+        let Ok(entries) = fs::read_dir(&folder) else {
+            continue;
+        };
+        for entry in entries.flatten() {
+            if entry.file_name().to_string_lossy().ends_with(".partial") {
+                found.push(entry.path());
+            }
+        }
+    }
+    found
+}
+
+#[test]
+fn an_interrupted_grade_leaves_no_temporary_file() {
+    // Eight students' large images of one scene: the report's images take a while to
+    // write. The test interrupts `grade` while one of its temporary files exists, and
+    // retries where it was too quick to catch; it fails if it never caught one.
+    let dir = common::folder("grade-interrupt");
+    fs::create_dir_all(dir.join("scenes")).unwrap();
+    fs::copy("examples/studio.txt", dir.join("scenes/studio.txt")).unwrap();
+    render(&dir, "studio", &["1200", "900"], "subs/s0/studio.ppm");
+    for k in 1..8 {
+        fs::create_dir_all(dir.join(format!("subs/s{k}"))).unwrap();
+        fs::copy(
+            dir.join("subs/s0/studio.ppm"),
+            dir.join(format!("subs/s{k}/studio.ppm")),
+        )
+        .unwrap();
+    }
+    let mut caught = 0;
+    for attempt in 0..20 {
+        let report = dir.join(format!("report{attempt}"));
+        let mut child = Command::new(env!("CARGO_BIN_EXE_legacy-rt"))
+            .args(["grade", "scenes", "subs", "-o", report.to_str().unwrap()])
+            .current_dir(&dir)
+            .stdin(std::process::Stdio::null())
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::null())
+            .spawn()
+            .unwrap();
+        let seen = loop {
+            if child.try_wait().unwrap().is_some() {
+                break false;
+            }
+            if !partial_files(&report).is_empty() {
+                break true;
+            }
+        };
+        if !seen {
+            continue;
+        }
+        // SAFETY: kill(2) on our own child's pid, with a valid signal number.
+        assert_eq!(
+            unsafe { libc::kill(child.id() as libc::pid_t, libc::SIGTERM) },
+            0
+        );
+        let status = child.wait().unwrap();
+        caught += 1;
+        assert_eq!(partial_files(&report), Vec::<PathBuf>::new(), "{status:?}");
+        if caught == 2 {
+            break;
+        }
+    }
+    assert!(caught > 0, "never saw a temporary file to interrupt");
+    fs::remove_dir_all(&dir).unwrap();
+}
+
+/// A class of one scene (studio) with one correct student, `ada`, in `dir`.
+fn small_class(dir: &Path) {
+    fs::create_dir_all(dir.join("scenes")).unwrap();
+    fs::copy("examples/studio.txt", dir.join("scenes/studio.txt")).unwrap();
+    render(dir, "studio", &["40", "30"], "subs/ada/studio.ppm");
+}
+
+#[test]
+fn links_in_the_submissions_are_listed_never_followed() {
+    let dir = common::folder("grade-links");
+    small_class(&dir);
+    // bo's folder is a link to /etc; cy's image a link to a file outside SUBMISSIONS.
+    let outside = dir.join("outside.ppm");
+    fs::copy(dir.join("subs/ada/studio.ppm"), &outside).unwrap();
+    std::os::unix::fs::symlink("/etc", dir.join("subs/bo")).unwrap();
+    fs::create_dir_all(dir.join("subs/cy")).unwrap();
+    std::os::unix::fs::symlink(&outside, dir.join("subs/cy/studio.ppm")).unwrap();
+    succeeded(&run_in(&dir, &["grade", "scenes", "subs", "-o", "report"]));
+    let grades = read_grades(&dir.join("report"));
+    let rows = grades["rows"].as_array().unwrap();
+    let row = |student: &str| rows.iter().find(|r| r["student"] == student).unwrap();
+    assert_eq!(row("ada")["verdict"], "match");
+    for student in ["bo", "cy"] {
+        assert_eq!(row(student)["verdict"], "unreadable", "{student}");
+        let message = row(student)["message"].as_str().unwrap();
+        assert!(
+            message.contains("is a symbolic link") && message.contains("not followed"),
+            "{message}"
+        );
+        assert!(row(student)["images"].is_null(), "{student}");
+    }
+    // Nothing of /etc in the report: no name of it listed, no image of cy's copied.
+    let json = fs::read_to_string(dir.join("report/grades.json")).unwrap();
+    let page = fs::read_to_string(dir.join("report/index.html")).unwrap();
+    for text in [&json, &page] {
+        assert!(!text.contains("passwd") && !text.contains("hostname"));
+    }
+    assert!(!dir.join("report/images/cy").exists());
+    fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn a_merged_part_is_read_only_from_its_own_files() {
+    let dir = common::folder("grade-merge-links");
+    small_class(&dir);
+    succeeded(&run_in(&dir, &["grade", "scenes", "subs", "-o", "part"]));
+    // The part's images/ replaced by a link to a folder of the grader's.
+    let secret = dir.join("secret");
+    fs::rename(dir.join("part/images"), &secret).unwrap();
+    std::os::unix::fs::symlink(&secret, dir.join("part/images")).unwrap();
+    let refused = run_in(&dir, &["grade", "--merge", "part", "-o", "merged"]);
+    assert_eq!(refused.status.code(), Some(2));
+    let message = String::from_utf8_lossy(&refused.stderr).into_owned();
+    assert!(message.contains("is a symbolic link"), "{message}");
+    fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn a_crafted_part_is_bounded_and_its_words_escaped() {
+    let dir = common::folder("grade-merge-crafted");
+    small_class(&dir);
+    succeeded(&run_in(&dir, &["grade", "scenes", "subs", "-o", "part"]));
+    let mut grades = read_grades(&dir.join("part"));
+    // A verdict with a terminal's escape codes: the summary shows them escaped.
+    grades["rows"][0]["verdict"] = "\u{1b}[31mmatch\u{1b}[0m".into();
+    fs::write(dir.join("part/grades.json"), grades.to_string()).unwrap();
+    let merged = run_in(&dir, &["grade", "--merge", "part", "-o", "merged"]);
+    succeeded(&merged);
+    let summary = String::from_utf8_lossy(&merged.stderr).into_owned();
+    assert!(
+        !summary.contains('\u{1b}') && summary.contains("\\u{1b}[31m"),
+        "{summary}"
+    );
+    // A list of 20,000 lines of explanation (the cap is 10,000, scaled down from a
+    // 60-million-element array that aborted the merge): refused, not held.
+    grades["rows"][0]["explanation"] = vec![""; 20_000].into();
+    fs::write(dir.join("part/grades.json"), grades.to_string()).unwrap();
+    let refused = run_in(&dir, &["grade", "--merge", "part", "-o", "merged2"]);
+    assert_eq!(refused.status.code(), Some(2));
+    let message = String::from_utf8_lossy(&refused.stderr).into_owned();
+    assert!(message.contains("more than 10000 items"), "{message}");
+    fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn csv_cells_are_no_formulas_and_no_escapes() {
+    let dir = common::folder("grade-csv");
+    small_class(&dir);
+    for name in ["=HYPERLINK(\"x\")", "+1", "-1", "@sum", "bo\u{1b}[2J"] {
+        fs::create_dir_all(dir.join("subs").join(name)).unwrap();
+        fs::copy(
+            dir.join("subs/ada/studio.ppm"),
+            dir.join("subs").join(name).join("studio.ppm"),
+        )
+        .unwrap();
+    }
+    succeeded(&run_in(&dir, &["grade", "scenes", "subs", "-o", "report"]));
+    let mut csv = csv::Reader::from_path(dir.join("report/grades.csv")).unwrap();
+    let students: Vec<String> = csv.records().map(|r| r.unwrap()[0].to_string()).collect();
+    for expected in [
+        "'=HYPERLINK(\"x\")",
+        "'+1",
+        "'-1",
+        "'@sum",
+        "bo\\u{1b}[2J",
+        "ada",
+    ] {
+        assert!(
+            students.iter().any(|s| s == expected),
+            "{expected} in {students:?}"
+        );
+    }
+    let bytes = fs::read(dir.join("report/grades.csv")).unwrap();
+    assert!(!bytes.contains(&0x1b));
     fs::remove_dir_all(&dir).unwrap();
 }

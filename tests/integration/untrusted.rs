@@ -311,41 +311,62 @@ fn a_file_name_cannot_write_lines_of_its_own_into_the_report() {
 }
 
 #[test]
-fn a_closed_standard_output_is_an_error_that_names_it() {
-    let dir = folder("closed-stdout");
+fn a_discarded_standard_output_keeps_the_exit_status() {
+    let dir = folder("discarded-stdout");
     let scene = scene_file(&dir);
-    let student = dir.join("student.ppm");
     let text = std::fs::read(&scene).unwrap();
+    let student = dir.join("student.ppm");
     assert!(
         run(&["4", "3", "-o", student.to_str().unwrap()], &text)
             .status
             .success()
     );
+    // Another image: the student's with its last byte changed.
+    let other = dir.join("other.ppm");
+    let mut bytes = std::fs::read(&student).unwrap();
+    *bytes.last_mut().unwrap() ^= 0x80;
+    std::fs::write(&other, bytes).unwrap();
     let binary = env!("CARGO_BIN_EXE_legacy-rt");
-    for args in [
-        format!("4 3 < '{scene}'"),
-        format!("trace 1 1 4 3 < '{scene}'"),
-        format!("compare '{scene}' '{}'", student.display()),
-    ] {
-        let script = format!("exec '{binary}' {args} >&-");
-        let output = Command::new("sh").args(["-c", &script]).output().unwrap();
-        assert_eq!(output.status.code(), Some(2), "{args}: {}", stderr(&output));
-        assert!(
-            stderr(&output).contains("standard output is closed"),
-            "{args}"
-        );
+    // /dev/null opened for writing (`>`), for reading and writing (`1<>`, Python's
+    // subprocess.DEVNULL), or standard output closed (`>&-`, which Rust's runtime opens
+    // on /dev/null): the output is discarded, and the exit status is the command's.
+    for discard in ["> /dev/null", "1<> /dev/null", ">&-"] {
+        for (args, code) in [
+            (format!("4 3 < '{scene}'"), 0),
+            (format!("trace 1 1 4 3 < '{scene}'"), 0),
+            (format!("compare '{scene}' '{}'", student.display()), 0),
+            (format!("compare '{scene}' '{}'", other.display()), 1),
+        ] {
+            let script = format!("exec '{binary}' {args} {discard}");
+            let output = Command::new("sh").args(["-c", &script]).output().unwrap();
+            assert_eq!(
+                output.status.code(),
+                Some(code),
+                "{args} {discard}: {}",
+                stderr(&output)
+            );
+            assert_eq!(stderr(&output), "", "{args} {discard}");
+        }
     }
-    // `> /dev/null` is a place to write to, and no error.
-    let script = format!("exec '{binary}' 4 3 < '{scene}' > /dev/null");
-    let output = Command::new("sh").args(["-c", &script]).output().unwrap();
-    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
-    // /dev/null opened for reading and writing (`<>`, Python's subprocess.DEVNULL) cannot
-    // be told from a closed output: the message says how to discard the output instead.
-    let script = format!("exec '{binary}' 4 3 < '{scene}' 1<> /dev/null");
-    let output = Command::new("sh").args(["-c", &script]).output().unwrap();
-    assert_eq!(output.status.code(), Some(2));
-    assert!(
-        stderr(&output).contains("open /dev/null for writing only"),
+    // As a Python grader runs it: subprocess.run(..., stdout=subprocess.DEVNULL).
+    let python = format!(
+        "import subprocess, sys\n\
+         codes = [subprocess.run(['{binary}', 'compare', '{scene}', name], \
+         stdout=subprocess.DEVNULL).returncode for name in sys.argv[1:]]\n\
+         print(codes)\n"
+    );
+    let output = Command::new("python3")
+        .args([
+            "-c",
+            &python,
+            student.to_str().unwrap(),
+            other.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(
+        String::from_utf8_lossy(&output.stdout).trim(),
+        "[0, 1]",
         "{}",
         stderr(&output)
     );
@@ -401,4 +422,209 @@ fn a_fixed_size_makes_an_image_of_another_size_a_wrong_size_verdict() {
     let report = String::from_utf8(output.stdout).unwrap();
     assert!(report.contains("verdict: wrong-size"), "{report}");
     assert!(report.contains("must be 16x12"), "{report}");
+}
+
+// ---------------------------------------------------------------------------------------
+// Issue 48: bounded memory and time for every file a student hands in, nothing followed
+// out of the class folder.
+
+/// What a run of the binary did: its exit code, its CPU seconds (user and system, from
+/// the kernel's account of that child alone, `wait4`), its standard error.
+struct Measured {
+    code: Option<i32>,
+    cpu: f64,
+    stderr: String,
+}
+
+/// Runs the binary with `args` in `dir`, standard input from `stdin` (a file) or none,
+/// standard output discarded, within an address space of `limit_mb` MB (`RLIMIT_AS`: an
+/// allocation past it fails, and the program with it), and measures it. The child's
+/// peak memory cannot be read back (a forked child's account starts from its parent's
+/// pages), so the limit is what bounds it. The child is reaped by `wait4` itself.
+#[allow(clippy::zombie_processes)]
+fn measured(dir: &Path, args: &[&str], stdin: Option<&Path>, limit_mb: u64) -> Measured {
+    use std::os::unix::process::CommandExt;
+    let error_file = dir.join("stderr.txt");
+    let mut command = Command::new(env!("CARGO_BIN_EXE_legacy-rt"));
+    command
+        .args(args)
+        .current_dir(dir)
+        .stdin(match stdin {
+            Some(path) => Stdio::from(std::fs::File::open(path).unwrap()),
+            None => Stdio::null(),
+        })
+        .stdout(Stdio::null())
+        .stderr(Stdio::from(std::fs::File::create(&error_file).unwrap()));
+    let bytes = limit_mb << 20;
+    // SAFETY: setrlimit is async-signal-safe, and the closure touches nothing else.
+    unsafe {
+        command.pre_exec(move || {
+            let limit = libc::rlimit {
+                rlim_cur: bytes,
+                rlim_max: bytes,
+            };
+            match libc::setrlimit(libc::RLIMIT_AS, &limit) {
+                0 => Ok(()),
+                _ => Err(std::io::Error::last_os_error()),
+            }
+        });
+    }
+    let child = command.spawn().unwrap();
+    let mut status = 0;
+    // SAFETY: an all-zero rusage is a valid value for wait4 to fill in.
+    let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
+    // SAFETY: wait4 on our own child's pid, with valid pointers to locals; it reaps the
+    // child, which `child` is not waited on after.
+    let pid = unsafe { libc::wait4(child.id() as libc::pid_t, &mut status, 0, &mut usage) };
+    assert_eq!(pid, child.id() as libc::pid_t);
+    let seconds = |t: libc::timeval| t.tv_sec as f64 + t.tv_usec as f64 / 1e6;
+    Measured {
+        code: libc::WIFEXITED(status).then(|| libc::WEXITSTATUS(status)),
+        cpu: seconds(usage.ru_utime) + seconds(usage.ru_stime),
+        stderr: std::fs::read_to_string(&error_file).unwrap(),
+    }
+}
+
+/// A 4x4 black PNG with `count` tiny text chunks of `kind` (iTXt or tEXt: the keyword
+/// `k` and the text `x`, which the decoder keeps) before its image data.
+fn flooded_png(kind: &[u8; 4], count: usize) -> Vec<u8> {
+    let data: &[u8] = match kind {
+        b"iTXt" => b"k\0\0\0\0\0x",
+        _ => b"k\0x",
+    };
+    let tiny = chunk(kind, data);
+    let mut extra = Vec::with_capacity(tiny.len() * count);
+    for _ in 0..count {
+        extra.extend_from_slice(&tiny);
+    }
+    png(4, 4, 8, 2, &extra, &[0u8; 4 * 13])
+}
+
+#[test]
+fn a_png_flooded_with_text_chunks_is_read_in_bounded_memory() {
+    // 2 million iTXt chunks (38 MB) before the image data: read in under 200 MB of address
+    // space (the decoder kept them all: 348 MB resident for these, 1.4 GB for 10
+    // million), the pixels compared.
+    let dir = folder("png-flood");
+    let scene = scene_file(&dir);
+    // At 4x4 no ray meets the sphere: the reference is black, as the PNG is.
+    let reference = run(&["4", "4"], &std::fs::read(&scene).unwrap()).stdout;
+    assert!(reference.ends_with(&[0; 48]));
+    for kind in [b"iTXt", b"tEXt"] {
+        let student = dir.join("flooded.png");
+        std::fs::write(&student, flooded_png(kind, 2_000_000)).unwrap();
+        let args = ["compare", &scene, student.to_str().unwrap()];
+        // Read within 200 MB, its pixels compared: they match.
+        let run = measured(&dir, &args, None, 200);
+        assert_eq!(run.code, Some(0), "{}", run.stderr);
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// `trace --against FILE 8 6` of the one-sphere scene, measured within 300 MB.
+fn read_trace(dir: &Path, file: &Path) -> Measured {
+    let scene = scene_file(dir);
+    let args = ["trace", "--against", file.to_str().unwrap(), "8", "6"];
+    measured(dir, &args, Some(Path::new(&scene)), 300)
+}
+
+#[test]
+fn a_hostile_trace_is_read_in_linear_time_and_bounded_memory() {
+    let dir = folder("trace-hostile");
+    // Lines of `nan(` without their `)`, which the number reader once rescanned to the end
+    // of the line after each: four times as many lines cost about four times the CPU
+    // (quadratic, a line alone took seconds).
+    let line = format!("PIX 3 2 {}\n", "nan(".repeat(15_000));
+    let cpu = |lines: usize| {
+        let file = dir.join("nan.txt");
+        std::fs::write(&file, line.repeat(lines)).unwrap();
+        let run = read_trace(&dir, &file);
+        assert_eq!(run.code, Some(2), "{}", run.stderr);
+        run.cpu
+    };
+    let (few, many) = (cpu(64), cpu(256));
+    assert!(
+        many < 8.0 * few.max(0.05),
+        "64 lines: {few} s, 256 lines: {many} s"
+    );
+    // 32 MB of newlines: read as a stream within 300 MB, not held (it took 16 times its
+    // size).
+    let file = dir.join("newlines.txt");
+    std::fs::write(&file, vec![b'\n'; 32 << 20]).unwrap();
+    let run = read_trace(&dir, &file);
+    assert_eq!(run.code, Some(2), "{}", run.stderr);
+    assert!(
+        run.stderr.contains("no line the course's DBG_ flags print"),
+        "{}",
+        run.stderr
+    );
+    // One line of 32 MB holding FND lines' words: read to its first 64 KiB (a block of
+    // some 5,000 tests, read against the reference: it differs), within 300 MB.
+    let file = dir.join("long.txt");
+    std::fs::write(&file, "FND 1: 2.0 - ".repeat(32 << 20 >> 4)).unwrap();
+    let run = read_trace(&dir, &file);
+    assert_eq!(run.code, Some(1), "{}", run.stderr);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn a_diff_into_a_link_or_a_fifo_is_refused() {
+    let dir = folder("diff-link");
+    let scene = scene_file(&dir);
+    let student = dir.join("student.ppm");
+    assert!(
+        run(
+            &["4", "3", "-o", student.to_str().unwrap()],
+            &std::fs::read(&scene).unwrap()
+        )
+        .status
+        .success()
+    );
+    // A student's diff.png linking to a file of the grader's: refused, the file intact.
+    let precious = dir.join("precious.txt");
+    std::fs::write(&precious, "the grader's notes").unwrap();
+    let link = dir.join("diff.png");
+    std::os::unix::fs::symlink(&precious, &link).unwrap();
+    let args = [
+        "--diff",
+        link.to_str().unwrap(),
+        &scene,
+        student.to_str().unwrap(),
+    ];
+    let output = compare_within(&args, Duration::from_secs(30)).unwrap();
+    assert_eq!(output.status.code(), Some(2));
+    assert!(
+        stderr(&output).contains("is a symbolic link"),
+        "{}",
+        stderr(&output)
+    );
+    assert_eq!(
+        std::fs::read_to_string(&precious).unwrap(),
+        "the grader's notes"
+    );
+    // A dangling link: refused, its target not created.
+    std::fs::remove_file(&link).unwrap();
+    let nowhere = dir.join("created-by-the-link.png");
+    std::os::unix::fs::symlink(&nowhere, &link).unwrap();
+    let output = compare_within(&args, Duration::from_secs(30)).unwrap();
+    assert_eq!(output.status.code(), Some(2));
+    assert!(!nowhere.exists());
+    // A FIFO: refused at once, not written into (which would wait for a reader).
+    std::fs::remove_file(&link).unwrap();
+    assert!(
+        Command::new("mkfifo")
+            .arg(&link)
+            .status()
+            .unwrap()
+            .success()
+    );
+    let output =
+        compare_within(&args, Duration::from_secs(10)).expect("compare hangs on a FIFO --diff");
+    assert_eq!(output.status.code(), Some(2));
+    assert!(
+        stderr(&output).contains("not a regular file"),
+        "{}",
+        stderr(&output)
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
 }

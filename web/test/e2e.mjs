@@ -19,6 +19,7 @@
 //  10. a pixel typed as X and Y is traced (at any size the canvas is shown), and the
 //      pixels a compare report names trace when clicked;
 //  11. opened from disk (file://), the page says to serve it with web/serve.sh;
+//  12. the sizes docs/web.md gives for web/dist/ are those of the folder built;
 //   8. `legacy-rt grade`'s report (index.html), opened from disk: no console error, every
 //      image loads, no request leaves the disk;
 //   9. at 1366x900 and 390x844 nothing is cut at the right, every control is labelled, and
@@ -31,7 +32,7 @@
 // time of the whole run, loading included), medians of 5, alternated run by run.
 
 import { spawn, spawnSync } from 'node:child_process';
-import { mkdirSync, mkdtempSync, readFileSync, readdirSync, rmSync, writeFileSync, existsSync } from 'node:fs';
+import { mkdirSync, mkdtempSync, readFileSync, readdirSync, rmSync, statSync, writeFileSync, existsSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -648,7 +649,7 @@ async function takeScreenshot(browser, url, file) {
 
 // The page's render times against the native binary's, course scenes at 640x480.
 async function benchmark(page) {
-  const native = process.env.LEGACY_RT ?? join(top, 'target/release/legacy-rt');
+  const native = process.env.LEGACY_RT_RELEASE ?? join(top, 'target/release/legacy-rt');
   const folder = join(top, '../shared/course-scenes');
   const scenes = readdirSync(folder).filter((f) => f.endsWith('.txt')).sort();
   const median = (xs) => [...xs].sort((a, b) => a - b)[xs.length >> 1];
@@ -691,8 +692,28 @@ async function benchmark(page) {
   console.log(`bench: first picture of an example after at most ${Math.max(...first).toFixed(0)} ms (median ${median(first).toFixed(0)} ms)`);
 }
 
+// The sizes docs/web.md gives for web/dist/ (the folder and its WebAssembly), within a
+// tenth of what was built.
+function sizesAreTheDocs() {
+  const sizeOf = (path) => {
+    const stat = statSync(path);
+    if (!stat.isDirectory()) return stat.size;
+    return readdirSync(path).reduce((sum, name) => sum + sizeOf(join(path, name)), 0);
+  };
+  const docs = readFileSync(join(top, 'docs/web.md'), 'utf8').replace(/\s+/g, ' ');
+  const [, folder, wasm] = docs.match(/about ([0-9.]+) MB, of which the WebAssembly is ([0-9.]+) MB/);
+  const dist = join(web, 'dist');
+  const built = { folder: sizeOf(dist) / 1e6, wasm: sizeOf(join(dist, 'pkg/legacy_rt_web_bg.wasm')) / 1e6 };
+  for (const [what, said] of [['folder', folder], ['wasm', wasm]]) {
+    assert.ok(Math.abs(built[what] - Number(said)) <= 0.1 * built[what],
+      `docs/web.md says ${said} MB for the ${what}; it is ${built[what].toFixed(2)} MB`);
+  }
+  console.log(`ok 12 - docs/web.md's sizes are web/dist's: ${built.folder.toFixed(2)} MB, the WebAssembly ${built.wasm.toFixed(2)} MB`);
+}
+
 async function main() {
   assert.ok(existsSync(join(web, 'dist/index.html')), 'web/dist/ is built (web/build.sh)');
+  sizesAreTheDocs();
   assert.ok(existsSync(binary), `${binary} is built`);
   const { server, url } = await serve();
   const browser = await chromium.launch({ executablePath: process.env.CHROMIUM ?? '/usr/bin/chromium', args: FLAGS });

@@ -23,8 +23,12 @@ pub struct SceneFile {
 pub enum Submitted {
     /// No file of that name.
     Missing,
-    /// The file (whatever it holds: reading it is grading it).
-    File(PathBuf),
+    /// The file (whatever it holds: reading it is grading it), and the other images of
+    /// the same scene in the folder, not graded (`studio.png` beside `studio.ppm`).
+    File(PathBuf, Vec<String>),
+    /// A symbolic link, in the student's folder or as the folder itself: never followed
+    /// (it may point anywhere on the grader's machine), graded unreadable.
+    Link(PathBuf),
 }
 
 /// A student: a folder of SUBMISSIONS, or SUBMISSIONS itself for one student.
@@ -65,20 +69,23 @@ impl Class {
     }
 }
 
-/// The entries of a folder, sorted by name, hidden ones (`.name`) left out.
-fn entries(folder: &Path, what: &str) -> Result<Vec<(String, PathBuf)>, Failure> {
+/// One entry of a folder: its name, its path, and whether it is a symbolic link.
+type Entry = (String, PathBuf, bool);
+
+/// The entries of a folder, sorted by name, hidden ones (`.name`) left out; each with
+/// whether it is a symbolic link (told without following it).
+fn entries(folder: &Path, what: &str) -> Result<Vec<Entry>, Failure> {
     let shown = escaped(&folder.display().to_string());
     let cannot =
         |error: std::io::Error| Failure(format!("error: cannot read {what} {shown}: {error}"), 2);
     let mut found = Vec::new();
     for entry in fs::read_dir(folder).map_err(cannot)? {
-        let name = entry
-            .map_err(cannot)?
-            .file_name()
-            .to_string_lossy()
-            .into_owned();
+        let entry = entry.map_err(cannot)?;
+        let name = entry.file_name().to_string_lossy().into_owned();
+        // The entry's own type: a link is a link, whatever it points at.
+        let link = entry.file_type().is_ok_and(|t| t.is_symlink());
         if !name.starts_with('.') {
-            found.push((name.clone(), folder.join(&name)));
+            found.push((name.clone(), folder.join(&name), link));
         }
     }
     found.sort();
@@ -94,7 +101,7 @@ fn split(name: &str) -> Option<(&str, String)> {
 /// Finds the class: the scene files of `scenes` and the students of `submissions`.
 pub fn find(scenes: &Path, submissions: &Path) -> Result<Class, Failure> {
     let mut scene_files = Vec::new();
-    for (name, path) in entries(scenes, "the scenes' folder")? {
+    for (name, path, _) in entries(scenes, "the scenes' folder")? {
         if let Some((stem, extension)) = split(&name)
             && extension == "txt"
             && path.is_file()
@@ -122,7 +129,7 @@ pub fn find(scenes: &Path, submissions: &Path) -> Result<Class, Failure> {
     let top = entries(submissions, "the submissions' folder")?;
     let mut unexpected = Vec::new();
     let mut students = Vec::new();
-    if top.iter().any(|(name, _)| is_image_of_a_scene(name)) {
+    if top.iter().any(|(name, _, _)| is_image_of_a_scene(name)) {
         // One student's images, as an autograder gives them.
         let name = fs::canonicalize(submissions)
             .ok()
@@ -130,8 +137,18 @@ pub fn find(scenes: &Path, submissions: &Path) -> Result<Class, Failure> {
             .unwrap_or_else(|| "student".to_string());
         students.push(student(name, &top, &scene_files, "", &mut unexpected));
     } else {
-        for (name, path) in &top {
-            if path.is_dir() {
+        for (name, path, link) in &top {
+            if *link {
+                // Listed, each scene unreadable, and never followed.
+                let files = scene_files
+                    .iter()
+                    .map(|_| Submitted::Link(path.clone()))
+                    .collect();
+                students.push(Student {
+                    name: name.clone(),
+                    files,
+                });
+            } else if path.is_dir() {
                 let files = entries(path, "the student's folder")?;
                 let prefix = format!("{name}/");
                 let found = student(name.clone(), &files, &scene_files, &prefix, &mut unexpected);
@@ -160,38 +177,49 @@ pub fn find(scenes: &Path, submissions: &Path) -> Result<Class, Failure> {
 /// A student's files among `files`, the others noted as unexpected under `prefix`.
 fn student(
     name: String,
-    files: &[(String, PathBuf)],
+    files: &[Entry],
     scenes: &[SceneFile],
     prefix: &str,
     unexpected: &mut Vec<String>,
 ) -> Student {
-    // Per scene, the file kept so far: the rank of its extension in IMAGES, its name, path.
-    let mut chosen: Vec<Option<(usize, &str, &PathBuf)>> = vec![None; scenes.len()];
-    for (file, path) in files {
+    // Per scene, the file kept so far: its rank (the place of its extension in IMAGES,
+    // a symbolic link after every file), its name and entry; and the other images of the
+    // scene, passed over.
+    let mut chosen: Vec<Option<(usize, &str, &Entry)>> = vec![None; scenes.len()];
+    let mut others: Vec<Vec<String>> = vec![Vec::new(); scenes.len()];
+    for entry in files {
+        let (file, _, link) = entry;
         let matched = split(file).and_then(|(stem, extension)| {
             let rank = IMAGES.iter().position(|e| *e == extension)?;
+            let rank = if *link { rank + IMAGES.len() } else { rank };
             Some((scenes.iter().position(|s| s.name == stem)?, rank))
         });
         let Some((scene, rank)) = matched else {
             unexpected.push(format!("{prefix}{file}"));
             continue;
         };
-        match chosen[scene] {
-            Some((kept_rank, _, _)) if kept_rank <= rank => {
-                unexpected.push(format!("{prefix}{file}"));
-            }
+        let passed_over = match chosen[scene] {
+            Some((kept_rank, _, _)) if kept_rank <= rank => file.as_str(),
             kept => {
-                if let Some((_, kept_name, _)) = kept {
-                    unexpected.push(format!("{prefix}{kept_name}"));
+                chosen[scene] = Some((rank, file, entry));
+                match kept {
+                    Some((_, kept_name, _)) => kept_name,
+                    None => continue,
                 }
-                chosen[scene] = Some((rank, file, path));
             }
-        }
+        };
+        unexpected.push(format!("{prefix}{passed_over}"));
+        others[scene].push(format!("{prefix}{passed_over}"));
     }
     let files = chosen
         .into_iter()
-        .map(|c| match c {
-            Some((_, _, path)) => Submitted::File(path.clone()),
+        .zip(others)
+        .map(|(c, mut others)| match c {
+            Some((_, _, (_, path, true))) => Submitted::Link(path.clone()),
+            Some((_, _, (_, path, false))) => {
+                others.sort();
+                Submitted::File(path.clone(), others)
+            }
             None => Submitted::Missing,
         })
         .collect();

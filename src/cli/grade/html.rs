@@ -3,6 +3,7 @@
 //! the diff side by side with the diagnosis and the worst pixels' trace commands.
 
 use super::{Grades, Row};
+use std::collections::HashMap;
 use std::fmt::Write;
 
 /// How many of a pair's worst pixels the page lists with their trace commands.
@@ -33,6 +34,7 @@ table.grades { border-collapse: collapse; margin: 8px 0 16px; }
 .match { background: #c8e6c9; } .differ { background: #ffcdd2; }
 .wrong-size { background: #ffe0b2; } .missing { background: #e0e0e0; }
 .unreadable { background: #f8bbd0; }
+.warn, .warning { color: #b71c1c; font-weight: 600; }
 .pair { border-top: 1px solid #ccc; padding: 8px 0; }
 .pair h3 { margin: 4px 0; font-size: 15px; }
 .pair h3 span { padding: 1px 6px; border-radius: 3px; }
@@ -43,6 +45,30 @@ img { display: block; max-width: 240px; image-rendering: pixelated; border: 1px 
   overflow-wrap: anywhere; }
 pre { background: #f5f5f5; padding: 8px; }
 ";
+
+/// The trace commands of the pair's worst pixels, as its compare report lists them (the
+/// first few).
+fn worst_traces(row: &Row) -> Vec<String> {
+    #[derive(serde::Deserialize)]
+    struct Worst {
+        trace: Option<String>,
+    }
+    #[derive(serde::Deserialize)]
+    struct Report {
+        #[serde(default)]
+        worst: Vec<Worst>,
+    }
+    let Some(raw) = &row.compare else {
+        return Vec::new();
+    };
+    let report: Option<Report> = serde_json::from_str(raw.get()).ok();
+    let worst = report.map_or(Vec::new(), |r| r.worst);
+    worst
+        .into_iter()
+        .filter_map(|w| w.trace)
+        .take(WORST_SHOWN)
+        .collect()
+}
 
 /// The page.
 pub fn page(grades: &Grades) -> String {
@@ -112,10 +138,15 @@ fn table(out: &mut String, grades: &Grades) {
         let _ = write!(out, "<th>{}</th>", esc(scene));
     }
     let _ = writeln!(out, "<th>points</th></tr></thead>\n<tbody>");
+    // Each student's rows, found once (a class of 50,000 rows stays linear).
+    let mut by_student: HashMap<&str, Vec<(usize, &Row)>> = HashMap::new();
+    for (i, row) in grades.rows.iter().enumerate() {
+        by_student.entry(&row.student).or_default().push((i, row));
+    }
     for student in &grades.students {
-        let rows: Vec<(usize, &Row)> = (grades.rows.iter().enumerate())
-            .filter(|(_, r)| &r.student == student)
-            .collect();
+        let rows = by_student
+            .get(student.as_str())
+            .map_or(&[][..], Vec::as_slice);
         if rows.is_empty() {
             continue; // another part's student
         }
@@ -123,9 +154,17 @@ fn table(out: &mut String, grades: &Grades) {
         for scene in &grades.scenes {
             match rows.iter().find(|(_, r)| &r.scene == scene) {
                 Some((i, row)) => {
+                    // A warning on the row: a mark the grader sees in the table.
+                    let mark = match &row.warning {
+                        Some(warning) => format!(
+                            " <span class=\"warn\" title=\"{}\">warning</span>",
+                            esc(warning)
+                        ),
+                        None => String::new(),
+                    };
                     let _ = write!(
                         out,
-                        "<td class=\"{0}\"><a href=\"#pair-{i}\">{0}</a><br><small>{1}/{2}</small></td>",
+                        "<td class=\"{0}\"><a href=\"#pair-{i}\">{0}</a>{mark}<br><small>{1}/{2}</small></td>",
                         esc(&row.verdict),
                         row.points,
                         row.max_points
@@ -175,6 +214,9 @@ fn pair(out: &mut String, i: usize, row: &Row) {
     if let Some(message) = &row.message {
         let _ = writeln!(out, "<p>{}</p>", esc(message));
     }
+    if let Some(warning) = &row.warning {
+        let _ = writeln!(out, "<p class=\"warning\">warning: {}</p>", esc(warning));
+    }
     if let Some(images) = &row.images {
         out.push_str("<div class=\"images\">\n");
         let figures = [
@@ -204,15 +246,7 @@ fn pair(out: &mut String, i: usize, row: &Row) {
             esc(&row.explanation.join("\n"))
         );
     }
-    let worst: Vec<String> = row
-        .compare
-        .as_ref()
-        .and_then(|c| c["worst"].as_array())
-        .into_iter()
-        .flatten()
-        .filter_map(|w| w["trace"].as_str().map(str::to_string))
-        .take(WORST_SHOWN)
-        .collect();
+    let worst = worst_traces(row);
     if !worst.is_empty() {
         out.push_str("<p>The worst pixels, traced in the reference:</p>\n<ul>\n");
         for command in worst {

@@ -44,7 +44,7 @@ options; its verdict is match, differ, wrong-size (with --size or a scheme's siz
 missing or unreadable. Each reference (scene, size, options) is rendered once.
 
 REPORT/ gets grades.csv (student, scene, verdict, differing_pixels, diagnosis, points,
-max_points, width, height, file, message), grades.json (the same and each pair's compare
+max_points, width, height, file, message, warning), grades.json (the same and each pair's compare
 report), index.html (a page that works offline: the class's table and, per pair, the
 reference, the student's image and the diff with the diagnosis) and images/. REPORT must
 be a new or empty folder, or an earlier report (its files are replaced).
@@ -127,7 +127,7 @@ fn shard(text: &str) -> Result<(usize, usize), String> {
 }
 
 /// One graded pair: a row of grades.csv, and of grades.json with the compare report.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Row {
     /// The student: their folder's name.
     pub student: String,
@@ -151,14 +151,49 @@ pub struct Row {
     pub file: Option<String>,
     /// Why the file could not be graded (unreadable), or what was expected (missing).
     pub message: Option<String>,
+    /// What the grader should look at although the pair was graded: other images of the
+    /// scene in the folder, not graded.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub warning: Option<String>,
     /// The diagnosis in words, as compare's report ends (with --diagnose).
+    #[serde(deserialize_with = "at_most::<_, 10_000>")]
     pub explanation: Vec<String>,
     /// compare's text report of the pair.
     pub text: Option<String>,
     /// The images under REPORT/: the reference, the student's and the diff.
     pub images: Option<Images>,
-    /// `compare --diagnose --json` of the pair.
-    pub compare: Option<serde_json::Value>,
+    /// `compare --diagnose --json` of the pair, as its text: read back from a part's
+    /// grades.json it costs its size, whatever it holds.
+    pub compare: Option<Box<serde_json::value::RawValue>>,
+}
+
+/// A list of at most `N` items, read lazily: a crafted file's list of millions of empty
+/// strings is refused before it takes memory 8 times its size.
+fn at_most<'de, D, const N: usize>(deserializer: D) -> Result<Vec<String>, D::Error>
+where
+    D: serde::Deserializer<'de>,
+{
+    struct Bounded<const N: usize>;
+    impl<'de, const N: usize> serde::de::Visitor<'de> for Bounded<N> {
+        type Value = Vec<String>;
+        fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+            write!(f, "a list of at most {N} strings")
+        }
+        fn visit_seq<A: serde::de::SeqAccess<'de>>(
+            self,
+            mut seq: A,
+        ) -> Result<Vec<String>, A::Error> {
+            let mut out = Vec::new();
+            while let Some(item) = seq.next_element()? {
+                if out.len() == N {
+                    return Err(serde::de::Error::custom(format!("more than {N} items")));
+                }
+                out.push(item);
+            }
+            Ok(out)
+        }
+    }
+    deserializer.deserialize_seq(Bounded::<N>)
 }
 
 /// A pair's images in the report folder, relative to it.
@@ -173,11 +208,13 @@ pub struct Images {
 }
 
 /// What grades.json holds.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Grades {
     /// The scenes, in order.
+    #[serde(deserialize_with = "at_most::<_, 100_000>")]
     pub scenes: Vec<String>,
     /// The students, in order.
+    #[serde(deserialize_with = "at_most::<_, 1_000_000>")]
     pub students: Vec<String>,
     /// The options every pair was graded with, as compare's flags.
     pub options: String,
@@ -185,6 +222,7 @@ pub struct Grades {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub shard: Option<String>,
     /// Files in SUBMISSIONS that are no scene's image.
+    #[serde(deserialize_with = "at_most::<_, 1_000_000>")]
     pub unexpected: Vec<String>,
     /// Every pair, student by student, scene by scene.
     pub rows: Vec<Row>,
@@ -194,10 +232,14 @@ impl Grades {
     /// Each verdict given and how many pairs got it, in the order first given.
     pub fn verdicts(&self) -> Vec<(&str, usize)> {
         let mut counts: Vec<(&str, usize)> = Vec::new();
+        let mut at: HashMap<&str, usize> = HashMap::new();
         for row in &self.rows {
-            match counts.iter_mut().find(|(v, _)| *v == row.verdict) {
-                Some((_, n)) => *n += 1,
-                None => counts.push((&row.verdict, 1)),
+            match at.get(row.verdict.as_str()) {
+                Some(&k) => counts[k].1 += 1,
+                None => {
+                    at.insert(&row.verdict, counts.len());
+                    counts.push((&row.verdict, 1));
+                }
             }
         }
         counts
@@ -207,6 +249,8 @@ impl Grades {
 /// Grades the class, or joins parts with `--merge`.
 pub fn run(args: &GradeArgs) -> Result<(), Failure> {
     args.how.check()?;
+    // An interrupt removes the report's files being written (`.NAME.PID-N.partial`).
+    super::interrupt::remove_partial_file_on_interrupt();
     if args.merge {
         return merge(args);
     }
@@ -366,6 +410,7 @@ impl Grader<'_> {
             height: None,
             file: None,
             message: None,
+            warning: None,
             explanation: Vec::new(),
             text: None,
             images: None,
@@ -380,7 +425,31 @@ impl Grader<'_> {
                 ));
                 return Ok(row);
             }
-            Submitted::File(path) => path,
+            Submitted::Link(path) => {
+                row.verdict = "unreadable".into();
+                row.file = Some(path.display().to_string());
+                let target = std::fs::read_link(path).map_or(String::new(), |to| {
+                    format!(" to {}", escaped(&to.display().to_string()))
+                });
+                row.message = Some(format!(
+                    "{} is a symbolic link{target}, not followed: a student's file must be the \
+                     file itself",
+                    escaped(&path.display().to_string())
+                ));
+                return Ok(row);
+            }
+            Submitted::File(path, others) => {
+                if !others.is_empty() {
+                    let name = path
+                        .file_name()
+                        .map_or(String::new(), |n| n.to_string_lossy().into_owned());
+                    row.warning = Some(format!(
+                        "also handed in: {} (not graded: {name} is, the first of .ppm, .png, .pnm)",
+                        others.join(", ")
+                    ));
+                }
+                path
+            }
         };
         row.file = Some(path.display().to_string());
         let image = match read_image(path, "student's image", self.args.max_pixels) {
@@ -446,7 +515,8 @@ impl Grader<'_> {
             settings.tolerance.levels,
         )?);
         row.compare = Some(
-            serde_json::to_value(&report).map_err(|error| Failure(format!("error: {error}"), 2))?,
+            serde_json::value::to_raw_value(&report)
+                .map_err(|error| Failure(format!("error: {error}"), 2))?,
         );
         Ok(row)
     }
@@ -486,8 +556,10 @@ impl Grader<'_> {
 
 /// The verdicts' counts on standard error, and where the report is.
 fn summary(grades: &Grades, folder: &Path) {
+    // A part's verdicts are its file's words: escaped, so that a crafted one cannot act on
+    // the terminal.
     let counts: Vec<String> = (grades.verdicts().iter())
-        .map(|(v, n)| format!("{n} {v}"))
+        .map(|(v, n)| format!("{n} {}", escaped(v)))
         .collect();
     super::say(&format!(
         "graded {} pairs ({} students x {} scenes{}): {}; report in {}",
@@ -556,10 +628,21 @@ fn merge(args: &GradeArgs) -> Result<(), Failure> {
         }
     }
     let mut grades = merged.expect("clap requires one path at least");
-    let student = |name: &str| grades.students.iter().position(|s| s == name);
-    let scene = |name: &str| grades.scenes.iter().position(|s| s == name);
+    let places = |names: &[String]| -> HashMap<String, usize> {
+        names
+            .iter()
+            .enumerate()
+            .map(|(k, n)| (n.clone(), k))
+            .collect()
+    };
+    let (students, scenes) = (places(&grades.students), places(&grades.scenes));
     let mut rows = std::mem::take(&mut grades.rows);
-    rows.sort_by_key(|row| (student(&row.student), scene(&row.scene)));
+    rows.sort_by_key(|row| {
+        (
+            students.get(&row.student).copied(),
+            scenes.get(&row.scene).copied(),
+        )
+    });
     grades.rows = rows;
     grades.unexpected.sort();
     report.write_grades(&grades)?;

@@ -28,6 +28,9 @@ pub struct Scheme {
     /// Per scene name (the file's name without `.txt`).
     #[serde(default)]
     scenes: BTreeMap<String, Entry>,
+    /// The file as named and its text, for the lines the messages name.
+    #[serde(skip)]
+    source: Option<(String, String)>,
 }
 
 /// One scene's entry.
@@ -64,21 +67,38 @@ impl Scheme {
     /// Fails on a scene the scheme names that SCENES does not hold (a typo would give
     /// its scene the default silently), on negative points and on an empty size.
     pub fn check(&self, scenes: &[SceneFile]) -> Result<(), Failure> {
-        let bad = |message: String| Failure(format!("error: --scheme: {message}"), 2);
+        // The file and the line of the first line that holds each of `needles`.
+        let bad = |needles: &[&str], message: String| {
+            let (file, line) = match &self.source {
+                Some((shown, text)) => {
+                    let line = text
+                        .lines()
+                        .position(|l| needles.iter().all(|n| l.contains(n)));
+                    let line = line.map_or(String::new(), |k| format!(" (line {})", k + 1));
+                    (format!(" {shown}"), line)
+                }
+                None => (String::new(), String::new()),
+            };
+            Failure(format!("error: --scheme{file}{line}: {message}"), 2)
+        };
         for (name, entry) in &self.scenes {
+            let key = format!("scenes.{name}");
             if !scenes.iter().any(|s| &s.name == name) {
                 let names: Vec<&str> = scenes.iter().map(|s| s.name.as_str()).collect();
-                return Err(bad(format!(
-                    "[scenes.{}] is no scene of SCENES, whose scenes are {}",
-                    escaped(name),
-                    names.join(", ")
-                )));
+                return Err(bad(
+                    &[&key],
+                    format!(
+                        "[scenes.{}] is no scene of SCENES, whose scenes are {}",
+                        escaped(name),
+                        names.join(", ")
+                    ),
+                ));
             }
             if entry.size.is_some_and(|[w, h]| w == 0 || h == 0) {
-                return Err(bad(format!(
-                    "[scenes.{}]: a size is two positive numbers",
-                    escaped(name)
-                )));
+                return Err(bad(
+                    &["size", "0"],
+                    format!("[scenes.{}]: a size is two positive numbers", escaped(name)),
+                ));
             }
         }
         let points = self
@@ -87,7 +107,10 @@ impl Scheme {
             .filter_map(|e| e.points)
             .chain(self.points);
         if let Some(p) = points.into_iter().find(|p| !(p.is_finite() && *p >= 0.0)) {
-            return Err(bad(format!("points are a number from 0 up, not {p}")));
+            return Err(bad(
+                &["points", "-"],
+                format!("points are a number from 0 up, not {p}"),
+            ));
         }
         Ok(())
     }
@@ -100,7 +123,8 @@ pub fn read(path: &Path) -> Result<Scheme, Failure> {
     let bytes = super::super::io::read_all(file, path, MAX_SCHEME)?;
     let text = String::from_utf8(bytes)
         .map_err(|_| Failure(format!("error: --scheme {shown} is not UTF-8 text"), 2))?;
-    toml::from_str(&text).map_err(|error| {
+    let scheme: Result<Scheme, _> = toml::from_str(&text);
+    let mut scheme = scheme.map_err(|error| {
         let at = error
             .span()
             .and_then(|span| text.get(..span.start))
@@ -110,5 +134,7 @@ pub fn read(path: &Path) -> Result<Scheme, Failure> {
             format!("error: --scheme {shown}{at}: {}", error.message()),
             2,
         )
-    })
+    })?;
+    scheme.source = Some((shown, text));
+    Ok(scheme)
 }

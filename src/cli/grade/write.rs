@@ -36,7 +36,8 @@ fn cannot_write(path: &Path, error: impl std::fmt::Display) -> Failure {
 
 /// Writes `bytes` to `path` whole ([`image_output::file::replace`]).
 fn put(path: &Path, bytes: &[u8]) -> Result<(), Failure> {
-    image_output::file::replace(path, bytes).map_err(|error| cannot_write(path, error))
+    image_output::file::replace(path, bytes, super::super::interrupt::partial_file)
+        .map_err(|error| cannot_write(path, error))
 }
 
 /// `path` made absolute and resolved as far as it exists.
@@ -261,7 +262,7 @@ impl Folder {
             {
                 continue;
             }
-            let from = part.join(relative);
+            let from = within(part, relative)?;
             let bytes = read_all(open_regular(&from)?, &from, MAX_INPUT)?;
             let to = self.root.join(relative);
             if let Some(parent) = to.parent() {
@@ -270,6 +271,18 @@ impl Folder {
             put(&to, &bytes)?;
         }
         Ok(row)
+    }
+}
+
+/// A text cell of grades.csv as a spreadsheet may show it: control characters escaped
+/// (`\u{1b}`), and a cell that a spreadsheet would take for a formula (starting `=`, `+`,
+/// `-`, `@`, a tab or a carriage return: a student's folder named `=HYPERLINK(...)`)
+/// prefixed with `'`, as OWASP advises against CSV injection.
+fn cell(text: &str) -> String {
+    let shown = escaped(text);
+    match text.starts_with(['=', '+', '-', '@', '\t', '\r']) {
+        true => format!("'{shown}"),
+        false => shown,
     }
 }
 
@@ -288,29 +301,53 @@ fn csv(grades: &Grades) -> Result<Vec<u8>, csv::Error> {
         "height",
         "file",
         "message",
+        "warning",
     ])?;
     let or_empty = |n: Option<usize>| n.map(|n| n.to_string()).unwrap_or_default();
+    let text = |t: Option<&str>| cell(t.unwrap_or_default());
     for row in &grades.rows {
         out.write_record([
-            row.student.as_str(),
-            &row.scene,
-            &row.verdict,
-            &or_empty(row.differing_pixels),
-            &row.diagnosis,
-            &row.points.to_string(),
-            &row.max_points.to_string(),
-            &or_empty(row.width),
-            &or_empty(row.height),
-            row.file.as_deref().unwrap_or_default(),
-            row.message.as_deref().unwrap_or_default(),
+            cell(&row.student),
+            cell(&row.scene),
+            cell(&row.verdict),
+            or_empty(row.differing_pixels),
+            cell(&row.diagnosis),
+            row.points.to_string(),
+            row.max_points.to_string(),
+            or_empty(row.width),
+            or_empty(row.height),
+            text(row.file.as_deref()),
+            text(row.message.as_deref()),
+            text(row.warning.as_deref()),
         ])?;
     }
     out.into_inner().map_err(|error| error.into_error().into())
 }
 
+/// `relative` under the part's folder `part`, where no component below the part is a
+/// symbolic link: a part's files are read as themselves, never through a link out of
+/// the part (an `images` linked to /etc would copy its files into the report).
+fn within(part: &Path, relative: &str) -> Result<PathBuf, Failure> {
+    let mut path = part.to_path_buf();
+    for component in Path::new(relative).components() {
+        path.push(component);
+        if fs::symlink_metadata(&path).is_ok_and(|m| m.file_type().is_symlink()) {
+            return Err(Failure(
+                format!(
+                    "error: {} is a symbolic link: a part's report is read only from its own \
+                     files, never through a link",
+                    escaped(&path.display().to_string())
+                ),
+                2,
+            ));
+        }
+    }
+    Ok(path)
+}
+
 /// A part's grades.json.
 pub fn read_grades(part: &Path) -> Result<Grades, Failure> {
-    let path = part.join("grades.json");
+    let path = within(part, "grades.json")?;
     let bytes = read_all(open_regular(&path)?, &path, MAX_INPUT)?;
     serde_json::from_slice(&bytes).map_err(|error| {
         Failure(
