@@ -46,6 +46,24 @@ pub fn scene_files(dir: &Path) -> Vec<PathBuf> {
     files
 }
 
+/// Runs `check` on each `.txt` file of `dir` (by name), with insta's settings naming
+/// its snapshots after the file, as `insta::glob!` names them (`NAME@file.txt.snap`, the
+/// file in the header): folder-driven snapshots without the glob and regex crates that
+/// `glob!` compiles in (a sixth of a newcomer's first `cargo test`).
+pub fn each_file(dir: &Path, check: impl Fn(&Path)) {
+    for path in scene_files(dir) {
+        let name = path.file_name().unwrap().to_string_lossy().into_owned();
+        let relative = path
+            .strip_prefix(env!("CARGO_MANIFEST_DIR"))
+            .unwrap_or(&path)
+            .to_path_buf();
+        let mut settings = insta::Settings::clone_current();
+        settings.set_snapshot_suffix(name);
+        settings.set_input_file(relative);
+        settings.bind(|| check(&path));
+    }
+}
+
 /// The course's scene folder beside the repository, or `None` (with a message) if absent.
 /// Under `CI=true` an absent folder fails the test instead: CI always has it, so a skip
 /// there would hide a broken checkout.

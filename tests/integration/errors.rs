@@ -1,7 +1,7 @@
 //! Every invalid input under `tests/invalid/` is an error that names its line and column,
 //! shows the line with a caret, and leaves standard output empty.
 
-use super::common::{run, scene_files, snapshots};
+use super::common::{each_file, run, scene_files, snapshots};
 use legacy_rt::error::{MeaningError, SceneErrorKind, SyntaxError};
 use std::collections::BTreeSet;
 use std::path::Path;
@@ -41,8 +41,9 @@ fn variant(kind: &SceneErrorKind) -> &'static str {
 
 #[test]
 fn every_invalid_input_is_an_error_with_line_column_and_caret() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/invalid");
     snapshots().bind(|| {
-        insta::glob!("../invalid", "*.txt", |path| {
+        each_file(&dir, |path| {
             let text = std::fs::read_to_string(path).unwrap();
             let error =
                 legacy_rt::load(&text).expect_err(&format!("{} must not load", path.display()));

@@ -1,13 +1,14 @@
 //! Every scene under `examples/` loads and renders; its `--dump` and its image are locked
 //! down by a snapshot.
 
-use super::common::{image_document, run, scene_files, snapshots};
+use super::common::{each_file, image_document, run, scene_files, snapshots};
 use std::path::Path;
 
 #[test]
 fn every_example_loads_and_its_dump_and_image_are_reviewed() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
     snapshots().bind(|| {
-        insta::glob!("../../examples", "*.txt", |path| {
+        each_file(&dir, |path| {
             let text = std::fs::read_to_string(path).unwrap();
             let scene = legacy_rt::load(&text)
                 .unwrap_or_else(|error| panic!("{} must load:\n{error}", path.display()));
