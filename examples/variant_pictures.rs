@@ -30,6 +30,8 @@ fn scene_for(variant: Variant) -> &'static str {
             "examples/note003_records.txt"
         }
         "max-dist" => "examples/mirrors.txt",
+        "behind-root" => "examples/tube.txt",
+        "z-tolerance" | "far-clip" => "../shared/course-scenes/spec1.txt",
         _ => "../shared/course-scenes/a04.txt",
     }
 }

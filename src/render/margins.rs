@@ -107,8 +107,8 @@ struct Facts {
     anchor: f64,
     /// The bounds of a quadric 21-24's local y (spec §5.6).
     bounds: Option<(f64, f64)>,
-    /// Whether the z > 0 rule applies to its plane (spec §5.1).
-    z_rule: bool,
+    /// The z limit of its plane's rule, where it has one (spec §5.1: 0).
+    z_limit: Option<f64>,
     /// A finite plane's width and height (spec §5.3).
     rectangle: Option<glam::DVec2>,
 }
@@ -129,7 +129,10 @@ impl Facts {
         Facts {
             anchor: anchor.abs().max_element(),
             bounds,
-            z_rule: shape.plane().is_some_and(|plane| plane.z_rule),
+            z_limit: shape
+                .plane()
+                .map(|plane| plane.z_limit)
+                .filter(|l| l.is_finite()),
             rectangle: match shape {
                 Shape::FinitePlane(rectangle) => Some(rectangle.size),
                 _ => None,
@@ -338,8 +341,8 @@ impl<'s, 'a, const PATHS: bool> Margins<'s, 'a, PATHS> {
                     plane_t = t;
                     let size = size(t);
                     take(t.abs(), size, t);
-                    if facts.z_rule {
-                        take(z.abs(), size, t);
+                    if let Some(limit) = facts.z_limit {
+                        take((z - limit).abs(), size, t);
                     }
                 }
                 HitNote::Rectangle { q, .. } => {

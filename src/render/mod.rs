@@ -39,7 +39,7 @@ pub const MAX_PRECISION: f64 = record::MARGIN_REACH;
 use crate::scene::Scene;
 use crate::shapes::kernel::{Kernel, KernelChoice, with_kernel};
 use crate::shapes::{Ray, unit};
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 use objects::From;
 use record::Recorder;
 use std::borrow::Cow;
@@ -132,30 +132,60 @@ pub(crate) struct Camera {
     pub(crate) viewpoint: DVec3,
     pub(crate) xs: Vec<f64>,
     pub(crate) ys: Vec<f64>,
+    /// jitter (spec §7.5): the seed of each pixel's point, and a pixel's width and
+    /// height in the world.
+    jitter: Option<(u64, DVec2)>,
 }
 
 impl Camera {
     fn new(scene: &Scene, options: &Options, rules: &Rules) -> Camera {
-        let axis = |count: usize, size: f64| -> Vec<f64> {
+        // The world coordinate of pixel index i, which row-offset and column-offset
+        // (spec §7.5) move past the window's edge where i + N leaves it.
+        let axis = |count: usize, size: f64, offset: i64| -> Vec<f64> {
             let last = (count - 1) as f64;
             let at = |i: usize| match rules.pixel_centre {
                 // The variant pixel-centre: (i + 0.5) / count (spec §7.3).
-                true => (i as f64 + 0.5) / count as f64,
-                false => i as f64 / last,
+                true => (i as f64 + offset as f64 + 0.5) / count as f64,
+                false => (i as f64 + offset as f64) / last,
             };
             (0..count).map(|i| at(i) * size - size / 2.0).collect()
         };
+        let spacing = |count: usize, size: f64| match rules.pixel_centre {
+            true => size / count as f64,
+            false => size / (count - 1) as f64,
+        };
         Camera {
             viewpoint: scene.viewpoint,
-            xs: axis(options.width, scene.window.x),
-            ys: axis(options.height, scene.window.y),
+            xs: axis(options.width, scene.window.x, rules.column_offset),
+            ys: axis(options.height, scene.window.y, rules.row_offset),
+            jitter: rules.jitter.map(|seed| {
+                let pixel = DVec2::new(
+                    spacing(options.width, scene.window.x),
+                    spacing(options.height, scene.window.y),
+                );
+                (seed, pixel)
+            }),
         }
     }
 
-    /// The world point of pixel (x, y), (0, 0) at the lower left (spec §4.1).
+    /// The world point of pixel (x, y), (0, 0) at the lower left (spec §4.1); under
+    /// jitter, a point drawn within half a pixel of it, the same for the same seed.
     #[inline]
     fn world(&self, x: usize, y: usize) -> DVec3 {
-        DVec3::new(self.xs[x], self.ys[y], 0.0)
+        let point = DVec3::new(self.xs[x], self.ys[y], 0.0);
+        match self.jitter {
+            None => point,
+            Some((seed, pixel)) => {
+                let (u, v) = jitter(seed, x, y);
+                point + DVec3::new((u - 0.5) * pixel.x, (v - 0.5) * pixel.y, 0.0)
+            }
+        }
+    }
+
+    /// Whether the camera's rays go through the points of a grid (not under jitter): the
+    /// tiles' lists hold for them.
+    fn on_grid(&self) -> bool {
+        self.jitter.is_none()
     }
 
     /// The ray through pixel (x, y); `None` if the viewpoint is the pixel's own world
@@ -169,6 +199,20 @@ impl Camera {
             dir,
         })
     }
+}
+
+/// Two numbers in [0, 1) drawn for pixel (x, y) from `seed`: SplitMix64 of the three,
+/// fixed for a seed on every machine (spec §7.5's jitter is reproducible).
+fn jitter(seed: u64, x: usize, y: usize) -> (f64, f64) {
+    let mix = |mut z: u64| {
+        z = z.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^ (z >> 31)
+    };
+    let key = mix(seed ^ mix((x as u64) << 32 ^ y as u64));
+    let unit = |bits: u64| (bits >> 11) as f64 / (1u64 << 53) as f64;
+    (unit(key), unit(mix(key)))
 }
 
 /// What every entry point needs before its first ray: the scene as its variants change
@@ -209,7 +253,8 @@ impl<'a> Setup<'a> {
 
     /// The tracer, reading the rules from `book`.
     fn tracer_with<B: Rulebook>(&self, book: B, options: &Options) -> Tracer<'_, B> {
-        let camera = Some((&self.camera, &self.threads));
+        // Tiles' lists hold for rays through the pixels' grid: not under jitter.
+        let camera = Some((&self.camera, &self.threads)).filter(|_| self.camera.on_grid());
         Tracer::new(&self.scene, book, options, camera, None)
     }
 

@@ -187,10 +187,11 @@ impl<'a, B: Rulebook> Objects<'a, B> {
     }
 
     /// Whether a hit on object `index` at `t` counts for [`Objects::closest`]: t above
-    /// `least` and within the object's box.
+    /// `least`, below far-clip's distance (spec §7.5; ∞ as written) and within the
+    /// object's box.
     #[inline(always)]
     fn counts(&self, index: usize, ray: &Ray, t: f64, least: f64) -> bool {
-        t > least && self.boxes.admits(index, ray, t)
+        t > least && t < self.rules.far() && self.boxes.admits(index, ray, t)
     }
 
     /// Whether object `index` is out of [`Objects::closest`]'s tests: the object the ray
@@ -230,6 +231,8 @@ impl<'a, B: Rulebook> Objects<'a, B> {
         let (skip, least) = self.leaving(From::Surface(from));
         let objects = &self.scene.objects;
         let out = |index: usize| Some(index) == skip || self.casts_no_shadow(index);
+        // Under far-clip (spec §7.5) a blocker as far as its distance is no hit.
+        let dist = dist.min(self.rules.far());
         let blocks =
             |index: usize, t: f64| t > least && t < dist && self.boxes.admits(index, ray, t);
         // A recorder of margins hears of blockers until one is sure: the shadow is as

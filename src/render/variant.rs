@@ -90,6 +90,8 @@ pub enum Scope {
     ImageOrLight,
     /// One light only.
     Light,
+    /// One record, object or light: where the reader stopped (stopped-at@LINE).
+    Record,
 }
 
 /// The parameter a variant takes after `=`.
@@ -97,10 +99,14 @@ pub enum Scope {
 pub enum Parameter {
     /// It takes no parameter.
     None,
-    /// A required number, named as in the id (`max-dist=D`).
-    Required(&'static str),
-    /// A number with a default (`shadow-epsilon[=E]`).
+    /// A required number greater than 0, named as in the id (`max-dist=D`), and the value
+    /// `compare --diagnose` tries first.
+    Required(&'static str, f64),
+    /// A number greater than 0 with a default (`shadow-epsilon[=E]`).
     Optional(&'static str, f64),
+    /// A required whole number other than 0, of either sign (`row-offset=N`), and the
+    /// value tried first.
+    Integer(&'static str, f64),
 }
 
 /// A row of the table.
@@ -150,7 +156,7 @@ macro_rules! variants {
 }
 
 use Kinds::{Any, BoundedQuadrics, Cones, Planes, TiledPlanes};
-use Scope::{Image, ImageOrLight, ImageOrObject, Light, Object};
+use Scope::{Image, ImageOrLight, ImageOrObject, Light, Object, Record};
 
 variants! {
     /// §4.1: the world point at (x + 0.5)/W instead of x/(W - 1).
@@ -206,8 +212,37 @@ variants! {
     OneBounce: "one-bounce", Tracer, Image, Parameter::None, "bounces",
         "§4.5 recursion", "at most one reflected ray per camera ray";
     /// §4.2: MAX_DIST D instead of 32.
-    MaxDist: "max-dist", Option, Image, Parameter::Required("D"), "max-dist",
+    MaxDist: "max-dist", Option, Image, Parameter::Required("D", 70.0), "max-dist",
         "§4.2 MAX_DIST 32", "MAX_DIST D (one term of the course used 70)";
+    /// §4.1 (§7.5): every row shows the pixel traced N rows up, as `rows - y` for
+    /// `rows - 1 - y` does (N = 1).
+    RowOffset: "row-offset", Camera, Image, Parameter::Integer("N", 1.0), "row offset",
+        "§4.1 output row r holds y = H-1-r",
+        "row r holds the pixel traced at y = H-1-r+N (N = 1: rows - y for rows - 1 - y; the top row traces a point just beyond the window)";
+    /// §4.1 (§7.5): every column shows the pixel traced N columns right.
+    ColumnOffset: "column-offset", Camera, Image, Parameter::Integer("N", 1.0), "column offset",
+        "§4.1 column x holds pixel x",
+        "column x holds the pixel traced at x+N (beyond the window where x+N leaves it)";
+    /// §4.1 (§7.5): each camera ray through a point drawn within half a pixel of P.
+    Jitter: "jitter", Camera, Image, Parameter::Optional("SEED", 1.0), "jitter",
+        "§4.1 one ray through P, no jitter",
+        "the ray through a point drawn uniformly within half a pixel of P in x and y (a fixed seed, default 1: the image is reproducible)";
+    /// §5.6 (§7.5): the smaller root in bounds even when <= 0, which §4.6 rejects: a ray
+    /// from inside a tube misses it.
+    BehindRoot: "behind-root", Scene, ImageOrObject(BoundedQuadrics), Parameter::None, "root",
+        "§5.6 the smallest positive root in bounds",
+        "the smaller root in bounds even when it is <= 0, which §4.6 then rejects (the sphere's rule of §5.2): a ray whose base is inside the surface misses it";
+    /// §5.1 (§7.5): a plane's hit counts up to z = E, not 0.
+    ZTolerance: "z-tolerance", Scene, ImageOrObject(Planes), Parameter::Required("E", 0.01), "z rule",
+        "§5.1 miss if z > 0", "miss if z > E";
+    /// §4.6 (§7.5): a hit farther than D from the ray's base is a miss.
+    FarClip: "far-clip", Hits, Image, Parameter::Required("D", 32.0), "far clip",
+        "§4.6 any t > 0 counts",
+        "a hit farther than D from the ray's base is a miss (a closest-hit search that starts from mindist = D)";
+    /// §2.3 (§7.5): the records from LINE on are not loaded.
+    StoppedAt: "stopped-at", Scene, Record, Parameter::None, "stopped",
+        "§2.3 records to the end of the file",
+        "the records from LINE on are not loaded (a reader that stopped there without an error)";
     /// The notes' root formula in f64 (`--kernel textbook`).
     Textbook: "textbook", Option, Image, Parameter::None, "kernel",
         "the accurate roots", "the notes' (-b ± sqrt(b² - 4ac)) / 2a in f64";
@@ -266,8 +301,9 @@ impl Variant {
     pub fn of(kind: Kind) -> Variant {
         let value = match kind.row().parameter {
             Parameter::None => None,
-            Parameter::Optional(_, default) => Some(default),
-            Parameter::Required(_) => Some(70.0),
+            Parameter::Optional(_, default)
+            | Parameter::Required(_, default)
+            | Parameter::Integer(_, default) => Some(default),
         };
         Variant {
             kind,
@@ -289,7 +325,7 @@ impl Variant {
     pub fn all() -> impl Iterator<Item = Variant> {
         VARIANTS
             .iter()
-            .filter(|row| !matches!(row.scope, Scope::Object(_) | Scope::Light))
+            .filter(|row| !matches!(row.scope, Scope::Object(_) | Scope::Light | Scope::Record))
             .map(|row| Variant::of(row.kind))
     }
 
@@ -319,7 +355,7 @@ impl Variant {
         let row = self.row();
         let mut id = row.id.to_string();
         match (row.parameter, self.value) {
-            (Parameter::Required(_), Some(v)) => id += &format!("={v}"),
+            (Parameter::Required(..) | Parameter::Integer(..), Some(v)) => id += &format!("={v}"),
             (Parameter::Optional(_, default), Some(v)) if v != default => id += &format!("={v}"),
             _ => {}
         }
@@ -335,13 +371,13 @@ impl Variant {
         let mut id = row.id.to_string();
         match row.parameter {
             Parameter::None => {}
-            Parameter::Required(name) => id += &format!("={name}"),
+            Parameter::Required(name, _) | Parameter::Integer(name, _) => id += &format!("={name}"),
             Parameter::Optional(name, _) => id += &format!("[={name}]"),
         }
         match row.scope {
             Scope::Image => {}
             Scope::ImageOrObject(_) | Scope::ImageOrLight => id += "[@LINE]",
-            Scope::Object(_) | Scope::Light => id += "@LINE",
+            Scope::Object(_) | Scope::Light | Scope::Record => id += "@LINE",
         }
         id
     }
@@ -373,15 +409,28 @@ impl Variant {
                 "{id}= takes a number greater than 0, found {value:?}"
             )),
         };
+        let whole = |value: &str| match value.parse::<i64>() {
+            Ok(n) if n != 0 && n.abs() <= 1_000_000 => Ok(n as f64),
+            _ => Err(format!(
+                "{id}= takes a whole number other than 0 (of either sign), found {value:?}"
+            )),
+        };
         let value = match (row.parameter, value) {
             (Parameter::None, None) => None,
             (Parameter::None, Some(_)) => return Err(format!("{id} takes no value")),
-            (Parameter::Required(name), None) => {
+            (Parameter::Required(name, example) | Parameter::Integer(name, example), None) => {
                 return Err(format!(
-                    "{id} takes its value: {id}={name}, such as {id}=70"
+                    "{id} takes its value: {id}={name}, such as {}",
+                    Variant {
+                        kind: row.kind,
+                        value: Some(example),
+                        line: None
+                    }
+                    .id()
                 ));
             }
             (Parameter::Optional(_, default), None) => Some(default),
+            (Parameter::Integer(..), Some(value)) => Some(whole(value)?),
             (_, Some(value)) => Some(number(value)?),
         };
         match (row.scope, line) {
@@ -400,6 +449,11 @@ impl Variant {
                     "{id} applies to one light: {id}@LINE, with the line of its type code"
                 ));
             }
+            (Scope::Record, None) => {
+                return Err(format!(
+                    "{id} names a record: {id}@LINE, with the line of its type code"
+                ));
+            }
             _ => {}
         }
         Ok(Variant {
@@ -414,6 +468,25 @@ impl Variant {
         let row = self.row();
         let instead = match (self.kind, self.value) {
             (Kind::MaxDist, Some(d)) => format!("MAX_DIST {d}"),
+            (Kind::RowOffset, Some(n)) => {
+                format!(
+                    "every row shows the pixel traced {} row(s) {}",
+                    n.abs(),
+                    if n > 0.0 { "up" } else { "down" }
+                )
+            }
+            (Kind::ColumnOffset, Some(n)) => {
+                format!(
+                    "every column shows the pixel traced {} column(s) {}",
+                    n.abs(),
+                    if n > 0.0 { "right" } else { "left" }
+                )
+            }
+            (Kind::ZTolerance, Some(e)) => format!("a plane's hit counts up to z = {e}"),
+            (Kind::FarClip, Some(d)) => {
+                format!("a hit farther than {d} from the ray's base is a miss")
+            }
+            (Kind::StoppedAt, _) => "the records from there on are not loaded".to_string(),
             (Kind::ShadowEpsilon, Some(e)) if self.line.is_none() => {
                 format!("rays leaving a surface test every object, counting hits with t > {e} only")
             }
@@ -444,6 +517,7 @@ pub fn markdown_table() -> String {
             Scope::Object(kinds) => format!("one of the {}", kinds.name()),
             Scope::ImageOrLight => "the image, or one light".to_string(),
             Scope::Light => "one light".to_string(),
+            Scope::Record => "the record on LINE and those after it".to_string(),
         };
         table += &format!(
             "| `{}` | {} | {} | {applies} |\n",
@@ -591,6 +665,13 @@ pub fn check_scopes(options: &Options, scene: &Scene) -> Result<(), String> {
             Scope::ImageOrLight | Scope::Light => {
                 let lines = scene.lights.iter().map(|l| l.line).collect();
                 (lines, "lights", "lights")
+            }
+            Scope::Record => {
+                let mut lines: Vec<usize> = (scene.objects.iter().map(|o| o.line))
+                    .chain(scene.lights.iter().map(|l| l.line))
+                    .collect();
+                lines.sort_unstable();
+                (lines, "records", "records")
             }
             Scope::Image => continue,
         };
@@ -813,6 +894,14 @@ pub(crate) struct Rules {
     pub(crate) epsilons: Option<Box<[Option<f64>]>>,
     /// Per light, in the scene's order.
     pub(crate) lights: Box<[LightRules]>,
+    /// row-offset and column-offset: the pixel each row and column traces, so many away.
+    pub(crate) row_offset: i64,
+    /// See `row_offset`.
+    pub(crate) column_offset: i64,
+    /// jitter: the seed of each pixel's point within half a pixel of its own.
+    pub(crate) jitter: Option<u64>,
+    /// far-clip: hits at this distance or farther are misses (∞ as written).
+    pub(crate) far: f64,
 }
 
 impl Rules {
@@ -822,6 +911,7 @@ impl Rules {
     pub(crate) fn new(options: &Options, scene: &Scene) -> Rules {
         let mut rules = Rules {
             bounces: super::MAX_BOUNCES,
+            far: f64::INFINITY,
             ..Rules::default()
         };
         let mut objects = vec![ObjectRules::default(); scene.objects.len()];
@@ -866,11 +956,18 @@ impl Rules {
                 Kind::NoShadows | Kind::Unshadowed => set_lights(LightRules::UNSHADOWED),
                 Kind::NoLight => set_lights(LightRules::OFF),
                 Kind::SquareFalloff => set_lights(LightRules::SQUARE_FALLOFF),
+                Kind::RowOffset => rules.row_offset = variant.value.unwrap_or(1.0) as i64,
+                Kind::ColumnOffset => rules.column_offset = variant.value.unwrap_or(1.0) as i64,
+                Kind::Jitter => rules.jitter = Some(variant.value.unwrap_or(1.0) as u64),
+                Kind::FarClip => rules.far = variant.value.unwrap_or(f64::INFINITY),
                 // The scene's (`Rules::scene`) and the options' own.
                 Kind::NoZRule
                 | Kind::TileParity
                 | Kind::ConeScale
                 | Kind::NearerRoot
+                | Kind::BehindRoot
+                | Kind::ZTolerance
+                | Kind::StoppedAt
                 | Kind::MaxDist
                 | Kind::Textbook
                 | Kind::TextbookF32 => {}
@@ -896,6 +993,7 @@ impl Rules {
             && self.epsilons.is_none()
             && self.bounces == super::MAX_BOUNCES
             && self.divisor == Divisor::Path
+            && self.far == f64::INFINITY
     }
 
     /// A colour's bytes (spec §4.7, or round-bytes or scale-256).
@@ -920,6 +1018,12 @@ impl Rules {
         }
         let mut scene = scene.clone();
         for variant in options.variants.iter().filter(in_scene) {
+            if let (Kind::StoppedAt, Some(line)) = (variant.kind, variant.line) {
+                // The reader stopped at `line`: that record and every later one are gone.
+                scene.objects.retain(|o| o.line < line);
+                scene.lights.retain(|l| l.line < line);
+                continue;
+            }
             let objects = (scene.objects.iter_mut())
                 .filter(|object| variant.line.is_none_or(|line| object.line == line));
             for object in objects {
@@ -943,12 +1047,22 @@ impl Rules {
                     }
                     Kind::NoZRule => {
                         if let Some(plane) = object.shape.plane_mut() {
-                            plane.z_rule = false;
+                            plane.z_limit = f64::INFINITY;
+                        }
+                    }
+                    Kind::ZTolerance => {
+                        if let Some(plane) = object.shape.plane_mut() {
+                            plane.z_limit = variant.value.unwrap_or(0.0);
                         }
                     }
                     Kind::NearerRoot => {
                         if let Some(quadric) = object.shape.bounded_axis_quadric_mut() {
                             quadric.smaller_root_only();
+                        }
+                    }
+                    Kind::BehindRoot => {
+                        if let Some(quadric) = object.shape.bounded_axis_quadric_mut() {
+                            quadric.smaller_root_even_behind();
                         }
                     }
                     _ => {}
@@ -979,6 +1093,8 @@ pub(crate) trait Rulebook: Copy + Send + Sync {
     fn bounces(self) -> usize;
     /// What step 6 of spec §4.2 divides by.
     fn divisor(self) -> Divisor;
+    /// Hits at this distance or farther are misses (∞ but under far-clip).
+    fn far(self) -> f64;
 }
 
 /// The rules of spec §4-§5 as written, known when the tracer is compiled.
@@ -1014,6 +1130,10 @@ impl Rulebook for AsWritten {
     fn divisor(self) -> Divisor {
         Divisor::Path
     }
+    #[inline(always)]
+    fn far(self) -> f64 {
+        f64::INFINITY
+    }
 }
 
 impl Rulebook for &Rules {
@@ -1044,6 +1164,10 @@ impl Rulebook for &Rules {
     #[inline(always)]
     fn divisor(self) -> Divisor {
         self.divisor
+    }
+    #[inline(always)]
+    fn far(self) -> f64 {
+        self.far
     }
 }
 

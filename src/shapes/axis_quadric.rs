@@ -53,6 +53,15 @@ pub enum RootRule {
         /// Highest local y.
         high: f64,
     },
+    /// The variant behind-root (spec §7.5): the smaller root within `[low, high]` even
+    /// when it is <= 0, which then is no hit (spec §4.6): a ray whose base is inside the
+    /// surface misses it.
+    SmallerEvenBehind {
+        /// Lowest local y.
+        low: f64,
+        /// Highest local y.
+        high: f64,
+    },
 }
 
 /// A quadric of the form above, with its frame and root rule.
@@ -81,9 +90,9 @@ impl RootRule {
     pub fn bounds(self) -> (f64, f64) {
         match self {
             RootRule::Nearer => (f64::NEG_INFINITY, f64::INFINITY),
-            RootRule::FirstPositiveWithin { low, high } | RootRule::SmallerWithin { low, high } => {
-                (low, high)
-            }
+            RootRule::FirstPositiveWithin { low, high }
+            | RootRule::SmallerWithin { low, high }
+            | RootRule::SmallerEvenBehind { low, high } => (low, high),
         }
     }
 
@@ -94,7 +103,9 @@ impl RootRule {
     pub fn accepts(self, t: f64, y: f64, slack: impl FnOnce() -> f64) -> bool {
         match self {
             RootRule::Nearer => true,
-            RootRule::FirstPositiveWithin { low, high } | RootRule::SmallerWithin { low, high } => {
+            RootRule::FirstPositiveWithin { low, high }
+            | RootRule::SmallerWithin { low, high }
+            | RootRule::SmallerEvenBehind { low, high } => {
                 let within = |slack: f64| low - slack <= y && y <= high + slack;
                 t > 0.0 && (within(0.0) || within(slack()))
             }
@@ -123,8 +134,11 @@ impl RootRule {
             if counts {
                 return Some(t);
             }
-            if let RootRule::SmallerWithin { .. } = self {
-                return None;
+            match self {
+                RootRule::SmallerWithin { .. } => return None,
+                // The first root in bounds is taken, and behind the base it is no hit.
+                RootRule::SmallerEvenBehind { low, high } if low <= y && y <= high => return None,
+                _ => {}
             }
         }
         None
@@ -204,6 +218,14 @@ impl AxisQuadric {
     pub(crate) fn smaller_root_only(&mut self) {
         if let RootRule::FirstPositiveWithin { low, high } = self.rule {
             self.rule = RootRule::SmallerWithin { low, high };
+        }
+    }
+
+    /// The same quadric under the variant behind-root (spec §7.5): the smaller root in
+    /// bounds even when it is behind the base.
+    pub(crate) fn smaller_root_even_behind(&mut self) {
+        if let RootRule::FirstPositiveWithin { low, high } = self.rule {
+            self.rule = RootRule::SmallerEvenBehind { low, high };
         }
     }
 

@@ -20,9 +20,9 @@ pub struct Plane {
     pub normal: DVec3,
     /// A point of the plane.
     pub point: DVec3,
-    /// Spec §5.1's rule that a hit with z > 0 (behind the screen) is a miss: true but
-    /// under the variant no-z-rule (spec §7.3).
-    pub z_rule: bool,
+    /// Spec §5.1's rule that a hit with z > this (behind the screen) is a miss: 0 as
+    /// written, E under z-tolerance=E (spec §7.5), ∞ under no-z-rule (spec §7.3).
+    pub z_limit: f64,
 }
 
 impl Plane {
@@ -32,14 +32,14 @@ impl Plane {
         Ok(Plane {
             normal,
             point,
-            z_rule: true,
+            z_limit: 0.0,
         })
     }
 
     /// Spec §5.1's rule on a plane hit at distance `t` along `ray` (the kernel's t): a
     /// miss when t < 0 (or not a number) or when the hit has z > 0, beyond the screen,
     /// unless within `slack()` of z = 0 (a kernel's allowance for the rounding of z,
-    /// computed only when z > 0) or under no-z-rule.
+    /// computed only when z > 0); the limit is E under z-tolerance, ∞ under no-z-rule.
     #[inline(always)]
     pub(crate) fn verdict(
         &self,
@@ -52,7 +52,8 @@ impl Plane {
         // (A NaN t counts as behind.)
         let verdict = if t.is_nan() || t < 0.0 {
             Verdict::Behind
-        } else if z <= 0.0 || !self.z_rule || z <= slack() {
+        } else if z <= self.z_limit || self.z_limit == f64::INFINITY || z - self.z_limit <= slack()
+        {
             Verdict::Counts
         } else {
             Verdict::BeyondScreen

@@ -413,3 +413,141 @@ fn geometry_variants_claim_no_reach() {
         );
     }
 }
+
+// The mistakes of spec §7.5.
+
+/// A variant with its value.
+fn valued(kind: Kind, value: f64) -> Variant {
+    Variant {
+        value: Some(value),
+        ..Variant::of(kind)
+    }
+}
+
+/// The red byte a pixel of the debug scene shows when its ray goes through world point
+/// (x, y): 5 / the distance to the wall, truncated.
+fn debug_red(x: f64, y: f64) -> u8 {
+    (5.0 / to_the_wall(x, y) * 255.0) as u8
+}
+
+#[test]
+fn row_and_column_offsets_trace_the_neighbouring_pixel() {
+    // 5x3 of the debug scene: pixel (x, y) is at (2x - 4, 3y - 3). Under row-offset=1
+    // pixel row y traces row y + 1: the top row (y = 2) traces y = 3, the point (x, 6),
+    // beyond the window.
+    let image = render_as(DEBUG_SCENE, (5, 3), &[valued(Kind::RowOffset, 1.0)]);
+    for (x, y) in [(0, 0), (2, 1), (4, 2)] {
+        let (wx, wy) = (2.0 * x as f64 - 4.0, 3.0 * (y + 1) as f64 - 3.0);
+        assert_eq!(red(&image, x, y), debug_red(wx, wy), "({x}, {y})");
+    }
+    // Two rows down.
+    let image = render_as(DEBUG_SCENE, (5, 3), &[valued(Kind::RowOffset, -2.0)]);
+    assert_eq!(red(&image, 0, 2), debug_red(-4.0, -3.0));
+    assert_eq!(red(&image, 1, 0), debug_red(-2.0, -9.0));
+    // One column right.
+    let image = render_as(DEBUG_SCENE, (5, 3), &[valued(Kind::ColumnOffset, 1.0)]);
+    assert_eq!(red(&image, 1, 1), debug_red(0.0, 0.0));
+    assert_eq!(red(&image, 4, 1), debug_red(6.0, 0.0));
+}
+
+#[test]
+fn jitter_moves_each_ray_within_half_a_pixel_the_same_way_every_time() {
+    let jittered = || render_as(DEBUG_SCENE, (5, 3), &[Variant::of(Kind::Jitter)]);
+    let (a, b) = (jittered(), jittered());
+    assert_eq!(a, b, "a seed gives one image");
+    let other = render_as(DEBUG_SCENE, (5, 3), &[valued(Kind::Jitter, 2.0)]);
+    assert_ne!(a, other, "another seed, other points");
+    // Each pixel's byte lies between those of the farthest and the nearest point of its
+    // square (half a pixel is 1 in x and 1.5 in y here): the wall's distance grows away
+    // from the centre.
+    for y in 0..3 {
+        for x in 0..5 {
+            let (cx, cy) = (2.0 * x as f64 - 4.0, 3.0 * y as f64 - 3.0);
+            let far = (cx.abs() + 1.0, cy.abs() + 1.5);
+            let near = ((cx.abs() - 1.0).max(0.0), (cy.abs() - 1.5).max(0.0));
+            let byte = red(&a, x, y);
+            assert!(
+                byte >= debug_red(far.0, far.1) && byte <= debug_red(near.0, near.1),
+                "({x}, {y}): {byte}"
+            );
+        }
+    }
+}
+
+#[test]
+fn behind_root_lets_a_shadow_ray_from_inside_a_tube_through() {
+    // examples/tube.txt: the floor inside the tube is in the tube's shadow; under
+    // behind-root the shadow ray from inside takes the tube's root behind its base (in
+    // bounds) and misses, so the floor there is lit.
+    let text =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/examples/tube.txt")).unwrap();
+    let scene = legacy_rt::load(&text).unwrap();
+    // The ray from the eye to the floor inside the tube, at (0.3, -2, -2.8).
+    let eye = scene.viewpoint;
+    let inside = DVec3::new(0.3, -2.0, -2.8);
+    let ray = Ray::new(eye, (inside - eye).normalize());
+    let options = Options::new(8, 6);
+    let plain = render::ray_trace(&scene, &options, ray);
+    let behind = options.with_variant(Variant::of(Kind::BehindRoot)).unwrap();
+    let lit = render::ray_trace(&scene, &behind, ray);
+    // Unlit: the ambient 0.5 over the path; lit: plus diffuse 4 × emissivity 8 × cos θ /
+    // dist, all over the path.
+    let path = (inside - eye).length();
+    assert!((plain.x - 0.5 / path).abs() < 1e-12, "{plain}");
+    let to_light = DVec3::new(3.0, -1.6, -3.0) - inside;
+    let (dist, cos) = (to_light.length(), to_light.normalize().y);
+    let expected = (0.5 + 4.0 * 8.0 * cos / dist) / path;
+    assert!((lit.x - expected).abs() < 1e-12, "{lit} against {expected}");
+}
+
+#[test]
+fn z_tolerance_moves_the_z_rule_and_far_clip_cuts_far_hits() {
+    // The plane z = 1 of no-z-rule's test: its hits have z = 1 > 0, a miss; under
+    // z-tolerance=2 they count, under z-tolerance=0.5 not.
+    let scene = "8 6\n0 0 3\n14\n1 1 1\n0 0 0\n0 0 0\n0 0 1\n0 0 1\n";
+    assert_eq!(
+        red(
+            &render_as(scene, (5, 3), &[valued(Kind::ZTolerance, 2.0)]),
+            2,
+            1
+        ),
+        127
+    );
+    assert_eq!(
+        red(
+            &render_as(scene, (5, 3), &[valued(Kind::ZTolerance, 0.5)]),
+            2,
+            1
+        ),
+        0
+    );
+    // The debug scene's wall is 8 from the eye along the centre ray: far-clip=8.5 keeps
+    // it, far-clip=7.5 cuts it (black).
+    assert_eq!(
+        red(
+            &render_as(DEBUG_SCENE, (5, 3), &[valued(Kind::FarClip, 8.5)]),
+            2,
+            1
+        ),
+        159
+    );
+    assert_eq!(
+        red(
+            &render_as(DEBUG_SCENE, (5, 3), &[valued(Kind::FarClip, 7.5)]),
+            2,
+            1
+        ),
+        0
+    );
+}
+
+#[test]
+fn stopped_at_drops_that_record_and_every_later_one() {
+    // A wall (line 3) and, nearer, a small white sphere (line 9) at the centre: stopped at
+    // the sphere, the centre shows the wall; stopped at the wall, nothing.
+    let scene = format!("{DEBUG_SCENE}13\n10 10 10\n0 0 0\n0 0 0\n0 0 -3\n1\n");
+    assert_eq!(red(&render_as(&scene, (5, 3), &[]), 2, 1), 255);
+    let stopped = |line: usize| render_as(&scene, (5, 3), &[Variant::of(Kind::StoppedAt).at(line)]);
+    assert_eq!(red(&stopped(9), 2, 1), 159);
+    assert!(stopped(3).pixels.iter().all(|p| *p == [0, 0, 0]));
+}

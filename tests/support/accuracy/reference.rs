@@ -125,8 +125,11 @@ fn axis_reference(quadric: &AxisQuadric, ray: &Ray) -> Reference {
             tie |= near_bound || near_zero;
             root > 0.0 && y >= low && y <= high
         }),
-        // The variant nearer-root: the suite's shapes follow the spec's rule.
-        RootRule::SmallerWithin { .. } => unreachable!("the suite has no variants"),
+        // The variants nearer-root and behind-root: the suite's shapes follow the spec's
+        // rule.
+        RootRule::SmallerWithin { .. } | RootRule::SmallerEvenBehind { .. } => {
+            unreachable!("the suite has no variants")
+        }
     });
     Reference {
         t: chosen.map(|x| x.hi() + x.lo()),
