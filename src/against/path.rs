@@ -1,5 +1,5 @@
 //! A pixel's path twice, grouped alike: the student's block as the course's `ray_trace`
-//! printed it ([`student`]), and the reference's trace ([`reference`]). Each is a list
+//! printed it ([`student`]), and the reference's trace ([`reference()`]). Each is a list
 //! of the path's rays (the camera ray, then each mirror's), and on each its objects'
 //! tests, its hit, each light's term with its shadow ray, and the intensity divided by
 //! the path's length.

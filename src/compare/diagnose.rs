@@ -70,6 +70,15 @@ pub struct Diagnosis {
     /// scene's file name.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub trace: Option<String>,
+    /// How many of the differing pixels the variants make agree.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub explains: Option<usize>,
+    /// How many agreeing pixels they make differ.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub breaks: Option<usize>,
+    /// How many pixels differed before them.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub differing: Option<usize>,
 }
 
 /// Where the differences concentrate when no variant explains them: the object most
@@ -98,6 +107,19 @@ struct Tried {
     agreement: f64,
     max_dist_range: Option<[f64; 2]>,
     pixel: Option<usize>,
+    /// The differing pixels it makes agree, and the agreeing ones it makes differ, where
+    /// it was scored exactly.
+    counts: Option<Counts>,
+}
+
+/// What a candidate does to the image, pixel by pixel: how many of the differing pixels
+/// it makes agree, and how many of the agreeing ones it makes differ.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Counts {
+    /// Differing pixels that agree under it.
+    pub fixed: usize,
+    /// Agreeing pixels that differ under it.
+    pub broken: usize,
 }
 
 /// The variants that explain `student` better than `reference` (the image of `options`,
@@ -125,18 +147,28 @@ pub fn diagnose_and_focus(
 ) -> (Vec<Diagnosis>, Option<Focus>) {
     // Which pixels differ, a bit each (not a list of them all).
     let (mask, count) = super::differing(&rendered.image, student, levels);
-    with_mask(scene, options, rendered, student, levels, (&mask, count))
+    with_mask(
+        scene,
+        options,
+        rendered,
+        student,
+        levels,
+        (&mask, count),
+        &[],
+    )
 }
 
 /// [`diagnose_and_focus`] given which pixels differ beyond `levels` (`mask`: pixel i is
-/// bit i % 64 of word i / 64) and how many.
-pub(super) fn with_mask(
+/// bit i % 64 of word i / 64) and how many. The pixels set in `ignored` (empty: none),
+/// which an earlier cause explains, count neither as fixed nor as broken.
+pub(crate) fn with_mask(
     scene: &Scene,
     options: &Options,
     rendered: &Reference,
     student: &Image,
     levels: u8,
     (mask, differing): (&[u64], usize),
+    ignored: &[u64],
 ) -> (Vec<Diagnosis>, Option<Focus>) {
     let reference = &rendered.image;
     let pixels = reference.pixels.len();
@@ -153,7 +185,12 @@ pub(super) fn with_mask(
         let every = |count: usize| count.div_ceil(n.max(1)).max(1);
         let mut sample = every_nth(mask, pixels, true, every(differing));
         let split = sample.len();
-        sample.extend(every_nth(mask, pixels, false, every(agreeing)));
+        let counted = |&i: &usize| ignored.get(i / 64).is_none_or(|w| w >> (i % 64) & 1 == 0);
+        sample.extend(
+            every_nth(mask, pixels, false, every(agreeing))
+                .into_iter()
+                .filter(counted),
+        );
         (sample, split)
     });
     let total = reference.pixels.len() as f64;
@@ -195,37 +232,24 @@ pub(super) fn with_mask(
             + agreeing as f64 * share(kept, sample_a.len());
         Some((after / total, fixed.first().copied()))
     };
-    // Which pixels agree with no byte rule, with round-bytes and with scale-256, where
-    // nothing is traced again: computed once each, when a candidate first needs it.
-    let untouched: [std::cell::OnceCell<Agreeing>; 3] = Default::default();
-    // The exact agreement: every pixel the candidate can change traced again (the whole
-    // image when that may be any).
-    let exact = |variants: &[Variant]| -> Option<f64> {
-        let options = variants
-            .iter()
-            .try_fold(*options, |o, &v| o.with_variant(v).ok())?;
-        let agreeing = match reach(variants) {
-            Some(reach) => {
-                let rule = reach.byte_rule();
-                let untouched = untouched[rule_slot(rule)].get_or_init(|| {
-                    Agreeing::under(rule, rendered, student, levels, (mask, differing))
-                });
-                count_agreeing(
-                    scene,
-                    &options,
-                    (reach, rendered),
-                    (student, levels),
-                    untouched,
-                )
-            }
-            None => {
-                let image = render::render(scene, &options, |_| {});
-                (image.pixels.into_iter().enumerate())
-                    .filter(|&(i, b)| agrees(i, b))
-                    .count()
-            }
-        };
-        Some(agreeing as f64 / total.max(1.0))
+    let scorer = Scorer {
+        scene,
+        options,
+        rendered,
+        student,
+        levels,
+        mask,
+        differing,
+        ignored,
+        given: &given,
+        untouched: Default::default(),
+    };
+    let exact_counts = |variants: &[Variant]| scorer.counts(variants);
+    // The exact agreement, from the counts.
+    let exact = |variants: &[Variant]| -> Option<(f64, Counts)> {
+        let counts = exact_counts(variants)?;
+        let agreeing = agreeing + counts.fixed - counts.broken;
+        Some((agreeing as f64 / total.max(1.0), counts))
     };
     // Tried on the small sample, then the best few on the large one.
     let estimate = |variants: &[Variant]| estimate_on(1, variants);
@@ -239,12 +263,32 @@ pub(super) fn with_mask(
     let mut candidates: Vec<Variant> = (Variant::tried())
         .filter(|v| v.kernel() != Some(options.kernel))
         .collect();
+    candidates.extend(other_values());
+    candidates.extend(stopped(scene));
     candidates.extend(scoped(scene, &paths));
     candidates.retain(|v| may_change(scene, options, v));
     let mut first_round: Vec<(Vec<Variant>, f64)> = (candidates.iter())
         .filter_map(|&v| Some((vec![v], estimate_on(0, &[v])?.0)))
         .filter(|(_, agreement)| *agreement > before)
         .collect();
+    // A reader that stopped, tried at every record near the best of the stops tried.
+    let stops = first_round
+        .iter()
+        .filter(|(v, _)| v[0].kind == Kind::StoppedAt);
+    if let Some(line) = stops
+        .max_by(|a, b| a.1.total_cmp(&b.1))
+        .and_then(|(v, _)| v[0].line)
+    {
+        let near: Vec<Variant> = (stopped_near(scene, line).into_iter())
+            .filter(|v| !candidates.contains(v))
+            .collect();
+        first_round.extend(
+            (near.iter())
+                .filter_map(|&v| Some((vec![v], estimate_on(0, &[v])?.0)))
+                .filter(|(_, agreement)| *agreement > before),
+        );
+        candidates.extend(near);
+    }
     shortlist(&mut first_round);
     let mut estimated: Vec<Tried> = (first_round.into_iter())
         .filter_map(|(variants, _)| {
@@ -254,6 +298,7 @@ pub(super) fn with_mask(
                 agreement,
                 max_dist_range: None,
                 pixel,
+                counts: None,
             })
         })
         .collect();
@@ -262,10 +307,14 @@ pub(super) fn with_mask(
     // The best estimate rendered whole: its agreement is the one reported.
     let mut found: Vec<Tried> = Vec::new();
     if let Some(tried) = estimated.into_iter().next()
-        && let Some(agreement) = exact(&tried.variants)
+        && let Some((agreement, counts)) = exact(&tried.variants)
         && agreement > before
     {
-        found.push(Tried { agreement, ..tried });
+        found.push(Tried {
+            agreement,
+            counts: Some(counts),
+            ..tried
+        });
     }
     // MAX_DIST can change only the pixels whose path reflects: it is estimated (at the
     // cost of a render) only where fixing every differing one of them would agree better
@@ -287,6 +336,7 @@ pub(super) fn with_mask(
             agreement,
             max_dist_range: Some(range),
             pixel: None,
+            counts: None,
         });
     }
     found.sort_by(|a, b| b.agreement.total_cmp(&a.agreement));
@@ -308,7 +358,7 @@ pub(super) fn with_mask(
         let top = pairs.max_by(|a, b| a.1.0.total_cmp(&b.1.0).then(std::cmp::Ordering::Greater));
         if let Some((partner, (estimated, pixel))) = top
             && estimated > best.agreement
-            && let Some(agreement) = exact(&[first, partner])
+            && let Some((agreement, counts)) = exact(&[first, partner])
             && agreement > best.agreement
         {
             let range = match (first.kind, partner.kind) {
@@ -321,8 +371,28 @@ pub(super) fn with_mask(
                 agreement,
                 max_dist_range: range,
                 pixel,
+                counts: Some(counts),
             };
             found.insert(0, pair);
+            // The partner alone too: which of the two comes first is what each explains
+            // alone (a whole-image mistake may hide the other's pixels).
+            if !found.iter().any(|t| t.variants == [partner])
+                && let Some((agreement, counts)) = exact(&[partner])
+            {
+                found.push(Tried {
+                    variants: vec![partner],
+                    agreement,
+                    max_dist_range: None,
+                    pixel: None,
+                    counts: Some(counts),
+                });
+            }
+        }
+    }
+    // The counts of the one that went without (MAX_DIST's), for the causes.
+    for tried in &mut found {
+        if tried.counts.is_none() {
+            tried.counts = exact_counts(&tried.variants);
         }
     }
     let (width, height) = (reference.width.max(1), reference.height);
@@ -336,6 +406,9 @@ pub(super) fn with_mask(
             max_dist_range: tried.max_dist_range,
             pixel: tried.pixel.map(|i| [i % width, height - 1 - i / width]),
             trace: None,
+            explains: tried.counts.map(|c| c.fixed),
+            breaks: tried.counts.map(|c| c.broken),
+            differing: Some(differing),
         })
         .collect();
     (diagnoses, focus)
@@ -370,12 +443,39 @@ fn reached(
     }
 }
 
+/// Whether output pixel i is one that a row or column offset among `variants` leaves
+/// uncovered (its ray beyond the window): a program with that mistake writes there what
+/// its buffer held, so a difference there is the offset's.
+fn uncovered(variants: &[Variant], width: usize, height: usize) -> impl Fn(usize) -> bool {
+    let offset = |kind: Kind| {
+        (variants.iter())
+            .filter(|v| v.kind == kind)
+            .map(|v| v.value.unwrap_or(1.0) as i64)
+            .sum::<i64>()
+    };
+    let (rows, columns) = (offset(Kind::RowOffset), offset(Kind::ColumnOffset));
+    let beyond = |at: usize, n: i64, size: usize| {
+        let traced = at as i64 + n;
+        traced < 0 || traced >= size as i64
+    };
+    // Row r traces y = H-1-r+N: beyond the window where r < N or r >= H+N; column x
+    // traces x+N.
+    let none = rows == 0 && columns == 0;
+    move |i: usize| {
+        if none {
+            return false;
+        }
+        let (x, r) = (i % width.max(1), i / width.max(1));
+        (rows != 0 && beyond(height - 1 - r.min(height - 1), rows, height))
+            || (columns != 0 && beyond(x, columns, width))
+    }
+}
+
 /// The pixels of the reference that agree with the student's image within the tolerance
 /// when a byte rule (or none) alone applies (pixel i: bit i % 64 of word i / 64), and how
 /// many: what every candidate with that byte rule keeps where it traces nothing.
 struct Agreeing {
     mask: Vec<u64>,
-    count: usize,
 }
 
 impl Agreeing {
@@ -386,34 +486,120 @@ impl Agreeing {
         rendered: &Reference,
         student: &Image,
         levels: u8,
-        (differing, count): (&[u64], usize),
+        (differing, _): (&[u64], usize),
     ) -> Agreeing {
         let pixels = student.pixels.len();
         if rule.is_none() {
             let mask = differing.iter().map(|&word| !word).collect();
-            return Agreeing {
-                mask,
-                count: pixels - count,
-            };
+            return Agreeing { mask };
         }
         let steps = render::Steps::of(rule);
         let reference = (rendered.paths.chunks(64)).zip(rendered.image.pixels.chunks(64));
         let mut mask = Vec::with_capacity(pixels.div_ceil(64));
-        let mut count = 0;
         for ((paths, bytes), theirs) in reference.zip(student.pixels.chunks(64)) {
             let mut word = 0u64;
             for (k, ((&paths, &bytes), &theirs)) in paths.iter().zip(bytes).zip(theirs).enumerate()
             {
                 word |= u64::from(within(steps.apply(paths, bytes), theirs, levels)) << k;
             }
-            count += word.count_ones() as usize;
             mask.push(word);
         }
-        Agreeing { mask, count }
+        Agreeing { mask }
     }
 
     fn at(&self, i: usize) -> bool {
         self.mask[i / 64] >> (i % 64) & 1 == 1
+    }
+}
+
+/// What scores a candidate exactly: the reference, the student's image, which pixels
+/// differ, and the agreement under each byte rule, computed once each when a candidate
+/// first needs it.
+struct Scorer<'a> {
+    scene: &'a Scene,
+    options: &'a Options,
+    rendered: &'a Reference,
+    student: &'a Image,
+    levels: u8,
+    /// Which pixels differ (pixel i: bit i % 64 of word i / 64), and how many.
+    mask: &'a [u64],
+    differing: usize,
+    /// Pixels that count neither way (empty: none), as [`with_mask`]'s `ignored`.
+    ignored: &'a [u64],
+    /// The variants the reference was rendered with.
+    given: &'a [Variant],
+    untouched: [std::cell::OnceCell<Agreeing>; 3],
+}
+
+impl Scorer<'_> {
+    /// What `variants` do to the image, pixel by pixel ([`Counts`]): every pixel they can
+    /// change traced again (the whole image when that may be any, [`Reach`]), the others
+    /// the reference's (under their byte rule). `None` when they cannot apply together.
+    fn counts(&self, variants: &[Variant]) -> Option<Counts> {
+        let (scene, rendered) = (self.scene, self.rendered);
+        let options = variants
+            .iter()
+            .try_fold(*self.options, |o, &v| o.with_variant(v).ok())?;
+        let pixels = rendered.image.pixels.len();
+        let agrees = |i: usize, b: [u8; 3]| within(b, self.student.pixels[i], self.levels);
+        let was_differing = |i: usize| self.mask[i / 64] >> (i % 64) & 1 == 1;
+        let mut counts = Counts::default();
+        let ignored = |i: usize| {
+            self.ignored
+                .get(i / 64)
+                .is_some_and(|w| w >> (i % 64) & 1 == 1)
+        };
+        let uncovered = uncovered(variants, options.width, options.height);
+        let mut tally = |i: usize, agrees_now: bool| match (was_differing(i), agrees_now) {
+            _ if ignored(i) => {}
+            // What a program with the offset writes there is its buffer's: the offset
+            // explains any difference, and breaks nothing.
+            (true, _) if uncovered(i) => counts.fixed += 1,
+            _ if uncovered(i) => {}
+            (true, true) => counts.fixed += 1,
+            (false, false) => counts.broken += 1,
+            _ => {}
+        };
+        let reach = match rendered.paths.len() == pixels {
+            true => Reach::of(scene, self.given, variants),
+            false => None,
+        };
+        match reach {
+            Some(reach) => {
+                let rule = reach.byte_rule();
+                let untouched = self.untouched[rule_slot(rule)].get_or_init(|| {
+                    let mask = (self.mask, self.differing);
+                    Agreeing::under(rule, rendered, self.student, self.levels, mask)
+                });
+                let paths = &rendered.paths;
+                let traced: Vec<usize> = match reach.traces() {
+                    true => (0..pixels).filter(|&i| reach.touches(paths[i])).collect(),
+                    false => Vec::new(),
+                };
+                // A byte rule alone traces nothing (and sets up no renderer).
+                let bytes = match traced.is_empty() {
+                    true => Vec::new(),
+                    false => render::render_pixels(scene, &options, &traced),
+                };
+                let mut next = traced.iter().zip(bytes).peekable();
+                for i in 0..pixels {
+                    match next.peek() {
+                        Some(&(&at, b)) if at == i => {
+                            tally(i, agrees(i, b));
+                            next.next();
+                        }
+                        _ => tally(i, untouched.at(i)),
+                    }
+                }
+            }
+            None => {
+                let image = render::render(scene, &options, |_| {});
+                for (i, b) in image.pixels.into_iter().enumerate() {
+                    tally(i, agrees(i, b));
+                }
+            }
+        }
+        Some(counts)
     }
 }
 
@@ -424,33 +610,6 @@ fn rule_slot(rule: Option<Kind>) -> usize {
         Some(Kind::Scale256) => 2,
         _ => 0,
     }
-}
-
-/// How many pixels of the image under `options` agree with `student` within `levels`,
-/// for a candidate that changes only what `reach` touches: those pixels traced again, the
-/// others the reference's, which agree where `untouched` (the agreement under the
-/// candidate's byte rule) says.
-fn count_agreeing(
-    scene: &Scene,
-    options: &Options,
-    (reach, rendered): (Reach, &Reference),
-    (student, levels): (&Image, u8),
-    untouched: &Agreeing,
-) -> usize {
-    if !reach.traces() {
-        return untouched.count;
-    }
-    let paths = rendered.paths.iter().enumerate();
-    let traced: Vec<usize> = paths
-        .filter(|&(_, &p)| reach.touches(p))
-        .map(|(i, _)| i)
-        .collect();
-    let kept = untouched.count - traced.iter().filter(|&&i| untouched.at(i)).count();
-    let bytes = render::render_pixels(scene, options, &traced);
-    let theirs = traced.iter().map(|&i| student.pixels[i]);
-    kept + (bytes.into_iter().zip(theirs))
-        .filter(|&(b, t)| within(b, t, levels))
-        .count()
 }
 
 /// The pixels whose bit in `mask` is `set` (of the first `pixels`), the first and then
@@ -533,6 +692,58 @@ fn reflects(object: &Object) -> bool {
     let mirror = |m: &Material| m.specular != glam::DVec3::ZERO;
     mirror(&object.look.material)
         || matches!(&object.look.pattern, Pattern::Tiles { background, .. } if mirror(background))
+}
+
+/// The values of the continuous and whole-number variants tried besides their first
+/// (spec §7.5): rows and columns off by up to three either way, a few z tolerances and
+/// far clips (round values, as students write them).
+fn other_values() -> Vec<Variant> {
+    let with = |kind: Kind, value: f64| Variant {
+        value: Some(value),
+        ..Variant::of(kind)
+    };
+    let mut out = Vec::new();
+    for n in [-3.0, -2.0, -1.0, 2.0, 3.0] {
+        out.push(with(Kind::RowOffset, n));
+        out.push(with(Kind::ColumnOffset, n));
+    }
+    out.extend([0.001, 0.05, 0.1, 0.2, 0.5, 1.0].map(|e| with(Kind::ZTolerance, e)));
+    out.extend([10.0, 20.0, 50.0, 100.0].map(|d| with(Kind::FarClip, d)));
+    out
+}
+
+/// How many records' lines a reader that stopped is tried at.
+const STOPS: usize = 32;
+
+/// A reader that stopped (stopped-at@LINE, spec §7.5): at the second record's line and
+/// on, up to [`STOPS`] of them spread over the file (at every one in a scene of few).
+fn stopped(scene: &Scene) -> Vec<Variant> {
+    let lines = stops(scene);
+    let every = lines.len().div_ceil(STOPS).max(1);
+    (lines.iter().step_by(every))
+        .map(|&line| Variant::of(Kind::StoppedAt).at(line))
+        .collect()
+}
+
+/// The lines a reader may have stopped at: every record's but the first, in order.
+fn stops(scene: &Scene) -> Vec<usize> {
+    let mut lines: Vec<usize> = (scene.objects.iter().map(|o| o.line))
+        .chain(scene.lights.iter().map(|l| l.line))
+        .collect();
+    lines.sort_unstable();
+    lines.split_off(1.min(lines.len()))
+}
+
+/// The stops [`stopped`] skipped around `line`: every record's line between the tried
+/// stops before and after it.
+fn stopped_near(scene: &Scene, line: usize) -> Vec<Variant> {
+    let lines = stops(scene);
+    let every = lines.len().div_ceil(STOPS).max(1);
+    let at = lines.partition_point(|&l| l < line);
+    let range = at.saturating_sub(every)..(at + every).min(lines.len());
+    (lines[range].iter())
+        .map(|&line| Variant::of(Kind::StoppedAt).at(line))
+        .collect()
 }
 
 /// The edits of one record on the objects and the lights most involved in the sampled
@@ -778,7 +989,18 @@ mod tests {
             let student = render::render(&scene, &student_options, |_| {});
             let rendered = crate::compare::reference_at(&scene, &options, 1e-7, true);
             let (mask, count) = super::super::differing(&rendered.image, &student, 0);
-            let untouched: [std::cell::OnceCell<Agreeing>; 3] = Default::default();
+            let scorer = Scorer {
+                scene: &scene,
+                options: &options,
+                rendered: &rendered,
+                student: &student,
+                levels: 0,
+                mask: &mask,
+                differing: count,
+                ignored: &[],
+                given: &[],
+                untouched: Default::default(),
+            };
             let mut candidates = vec![
                 vec![Variant::of(Kind::RoundBytes)],
                 vec![Variant::of(Kind::Scale256)],
@@ -788,6 +1010,7 @@ mod tests {
                 candidates.push(vec![Variant::of(Kind::Scale256), edit]);
                 candidates.push(vec![Variant::of(Kind::RoundBytes), edit]);
             }
+            let pixels = student.pixels.len();
             for variants in candidates {
                 let Some(with) = variants
                     .iter()
@@ -795,20 +1018,24 @@ mod tests {
                 else {
                     continue;
                 };
-                let Some(reach) = Reach::of(&scene, &[], &variants) else {
+                if Reach::of(&scene, &[], &variants).is_none() {
                     continue;
-                };
-                let rule = reach.byte_rule();
-                let slot = &untouched[rule_slot(rule)];
-                let under = slot
-                    .get_or_init(|| Agreeing::under(rule, &rendered, &student, 0, (&mask, count)));
-                let exact = count_agreeing(&scene, &with, (reach, &rendered), (&student, 0), under);
+                }
+                let counts = scorer.counts(&variants).unwrap();
+                let exact = pixels - count + counts.fixed - counts.broken;
+                // The whole image rendered with the candidate, set against the reference's
+                // pixel by pixel: the same counts.
                 let whole = render::render(&scene, &with, |_| {});
                 let expected = (whole.pixels.iter().zip(&student.pixels))
                     .filter(|(a, b)| a == b)
                     .count();
+                let fixed = (0..pixels)
+                    .filter(|&i| rendered.image.pixels[i] != student.pixels[i])
+                    .filter(|&i| whole.pixels[i] == student.pixels[i])
+                    .count();
                 let ids: Vec<String> = variants.iter().map(|v| v.id()).collect();
                 assert_eq!(exact, expected, "{name} {}", ids.join(","));
+                assert_eq!(counts.fixed, fixed, "{name} {}", ids.join(","));
             }
         }
     }

@@ -7,6 +7,7 @@
 //! ([`diagnose()`]). Everything here works on bytes in memory; reading files and
 //! printing are the command line's.
 
+pub mod causes;
 mod diagnose;
 pub mod read;
 pub mod text;
@@ -208,6 +209,11 @@ pub struct Report {
     /// With diagnose: the object the differing pixels' paths involve most, and how.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub focus: Option<Focus>,
+    /// With diagnose: the causes the pixels support, in order, each with the differing
+    /// pixels it explains and the agreeing ones it breaks; empty when none explains at
+    /// least half of what was left.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub causes: Option<Vec<causes::Cause>>,
     /// The size the grader required (`--size W H`), when the student's image has
     /// another: `[W, H]` with verdict `wrong-size`.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -318,6 +324,7 @@ pub fn wrong_size(student: &Image, expected: (usize, usize), settings: &Settings
         worst: Vec::new(),
         diagnosis: None,
         focus: None,
+        causes: None,
         expected_size: Some([expected.0, expected.1]),
     }
 }
@@ -465,7 +472,7 @@ pub fn report(
             }
         })
         .collect();
-    let (diagnosis, focus) = match scene {
+    let (diagnosis, focus, causes) = match scene {
         Some((scene, options)) if settings.diagnose => {
             let options = Options {
                 width,
@@ -473,11 +480,11 @@ pub fn report(
                 ..*options
             };
             let mask = (&beyond[..], differing_pixels);
-            let (found, focus) =
-                diagnose::with_mask(scene, &options, rendered, student, levels, mask);
-            (Some(found), focus)
+            let (found, focus, causes) =
+                causes::explain(scene, &options, rendered, student, levels, mask);
+            (Some(found), focus, Some(causes))
         }
-        _ => (None, None),
+        _ => (None, None, None),
     };
     Ok(Report {
         verdict,
@@ -497,6 +504,7 @@ pub fn report(
         worst,
         diagnosis,
         focus,
+        causes,
         expected_size: None,
     })
 }

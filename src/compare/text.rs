@@ -3,7 +3,7 @@
 
 use super::{Report, Verdict};
 use crate::Options;
-use crate::render::Choices;
+use crate::render::{Choices, Variant};
 
 /// `path` as a shell word: as it is when it needs no quoting, in single quotes when it
 /// does, and in the `$'…'` quotes of bash and zsh, with escapes, when it holds a control
@@ -107,6 +107,24 @@ fn advice(variant: crate::render::Variant) -> (String, &'static str) {
         Kind::FlippedNormal => ("has its normal reversed".into(), "its normal"),
         Kind::NoLight => ("is off".into(), "the loop over the lights"),
         Kind::Unshadowed => ("is never blocked".into(), "its shadow rays"),
+        Kind::BehindRoot => (
+            "keeps its smaller root in bounds even behind the ray's base (a ray from inside \
+             it misses it)"
+                .into(),
+            "the root its test returns: the smallest in bounds that is > 0 (spec §5.6)",
+        ),
+        Kind::NearerRoot => (
+            "tries only its smaller root".into(),
+            "the root its test returns: the other one when the first is out of bounds",
+        ),
+        Kind::ZTolerance => (
+            format!("counts hits up to z = {}", variant.value.unwrap_or(0.0)),
+            "its z > 0 test (spec §5.1)",
+        ),
+        Kind::StoppedAt => (
+            "and every record after it are not loaded".into(),
+            "the loop that reads the records: it must go on to the end of the file (spec §2.3)",
+        ),
         _ => (
             format!("is rendered with --variant {}", variant.id()),
             "the rule it replaces",
@@ -249,36 +267,69 @@ pub fn diagnosis(report: &Report) -> Vec<String> {
     let Some(diagnosis) = &report.diagnosis else {
         return out;
     };
-    if diagnosis.is_empty() {
+    let causes = report.causes.as_deref().unwrap_or(&[]);
+    if report.differing_pixels == 0 {
+        line("diagnosis: nothing to explain, every pixel is within the tolerance".into());
+    } else if causes.is_empty() {
         line(
-            match report.differing_pixels {
-                0 => "diagnosis: nothing to explain, every pixel is within the tolerance",
-                _ => "diagnosis: no variant explains the differences better than the reference",
-            }
-            .to_string(),
+            "diagnosis: no cause explains the differences: no mistake of the catalogue \
+             (docs/variants.md), alone or two together, makes at least half of the differing \
+             pixels agree without making others differ"
+                .to_string(),
         );
     } else {
-        let before = diagnosis[0].agreement_before;
-        line(format!(
-            "diagnosis: the reference agrees with {} of the student's pixels; rendered as \
-             if with",
-            agreement(before)
-        ));
-        for found in diagnosis {
+        // The catalogue's candidate, where the causes are its variants: its agreement.
+        let variants: Vec<Variant> = causes.iter().flat_map(|c| c.variants.clone()).collect();
+        let whole_image_first = causes.first().is_some_and(|c| c.variants.is_empty());
+        let found = diagnosis.iter().find(|d| d.variants == variants);
+        if found.is_none() || whole_image_first {
+            let before = 1.0 - report.differing_pixels as f64 / report.pixels.max(1) as f64;
+            line(format!(
+                "diagnosis: the reference agrees with {} of the student's pixels",
+                agreement(before)
+            ));
+        }
+        if let Some(found) = found
+            && !whole_image_first
+        {
+            line(format!(
+                "diagnosis: the reference agrees with {} of the student's pixels; rendered as \
+                 if with",
+                agreement(found.agreement_before)
+            ));
             let ids: Vec<String> = found.variants.iter().map(|v| v.id()).collect();
-            let ids = ids.join(",");
             let about: Vec<String> = found.variants.iter().map(|v| v.describe()).collect();
             line(format!(
-                "  --variant {ids}: {} ({})",
+                "  --variant {}: {} ({})",
+                ids.join(","),
                 agreement(found.agreement_after),
                 about.join("; ")
             ));
         }
+        line(
+            "causes, in order, each with the differing pixels it explains (of those left) and \
+             the agreeing ones it would make differ:"
+                .to_string(),
+        );
+        for (k, cause) in causes.iter().enumerate() {
+            let what = match cause.variants.is_empty() {
+                true => format!("{} ({})", cause.id, cause.about),
+                false => format!("--variant {}", cause.id),
+            };
+            line(format!(
+                "  {}. {what}: explains {} of {}, breaks {}",
+                k + 1,
+                thousands(cause.explains),
+                thousands(cause.of),
+                thousands(cause.breaks)
+            ));
+        }
         // The best, when it is one record's edit that explains nearly everything, in
         // words a student acts on.
-        let best = &diagnosis[0];
-        if let (Some(subject), [variant]) = (&best.subject, best.variants.as_slice())
+        if let Some(best) = diagnosis.first()
+            && let (Some(subject), [variant]) = (&best.subject, best.variants.as_slice())
             && best.agreement_after >= LOCALISED
+            && causes.iter().any(|c| c.variants == [*variant])
         {
             let (what, look) = advice(*variant);
             let mut sentence = format!(
@@ -292,9 +343,7 @@ pub fn diagnosis(report: &Report) -> Vec<String> {
         }
     }
     if let Some(focus) = &report.focus
-        && diagnosis
-            .first()
-            .is_none_or(|best| best.agreement_after < LOCALISED)
+        && causes.is_empty()
     {
         let part =
             |share: f64, what: &str| (share > 0.0).then(|| format!("{} {what}", percent_of(share)));
@@ -319,6 +368,7 @@ pub fn diagnosis(report: &Report) -> Vec<String> {
     let named = diagnosis
         .first()
         .filter(|best| best.subject.is_some() && best.agreement_after >= LOCALISED)
+        .filter(|_| !causes.is_empty())
         .and_then(|best| best.trace.as_ref());
     let worst = report.worst.iter().find_map(|w| w.trace.as_ref());
     if let Some(command) = named.or(worst)

@@ -191,7 +191,7 @@ impl<'a, B: Rulebook> Objects<'a, B> {
     /// object's box.
     #[inline(always)]
     fn counts(&self, index: usize, ray: &Ray, t: f64, least: f64) -> bool {
-        t > least && t < self.rules.far() && self.boxes.admits(index, ray, t)
+        t > least && self.rules.far().is_none_or(|far| t < far) && self.boxes.admits(index, ray, t)
     }
 
     /// Whether object `index` is out of [`Objects::closest`]'s tests: the object the ray
@@ -232,7 +232,7 @@ impl<'a, B: Rulebook> Objects<'a, B> {
         let objects = &self.scene.objects;
         let out = |index: usize| Some(index) == skip || self.casts_no_shadow(index);
         // Under far-clip (spec §7.5) a blocker as far as its distance is no hit.
-        let dist = dist.min(self.rules.far());
+        let dist = self.rules.far().map_or(dist, |far| dist.min(far));
         let blocks =
             |index: usize, t: f64| t > least && t < dist && self.boxes.admits(index, ray, t);
         // A recorder of margins hears of blockers until one is sure: the shadow is as

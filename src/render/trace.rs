@@ -89,6 +89,23 @@ impl Tracing<'_> {
         Some(self.through((x, y), self.world(x, y)))
     }
 
+    /// The bytes the camera ray through the point `world` of the screen (z = 0) gives,
+    /// traced without recording: what a tracer that samples elsewhere in a pixel sees.
+    pub fn bytes_through(&self, world: DVec3) -> [u8; 3] {
+        let viewpoint = self.setup.camera.viewpoint;
+        let colour = match unit(world - viewpoint) {
+            Some(dir) => {
+                let ray = Ray {
+                    base: viewpoint,
+                    dir,
+                };
+                with_kernel!(self.options.kernel, K => self.tracer.pixel::<K>(ray, None, &mut ()))
+            }
+            None => DVec3::ZERO,
+        };
+        self.bytes(colour)
+    }
+
     /// The trace of the camera ray through the point `world` of the screen (z = 0), named
     /// as pixel `pixel`'s: a program's ray through a point that is not its pixel's (a
     /// row off, jittered) followed as the reference follows its own.

@@ -486,7 +486,13 @@ impl Variant {
             (Kind::FarClip, Some(d)) => {
                 format!("a hit farther than {d} from the ray's base is a miss")
             }
-            (Kind::StoppedAt, _) => "the records from there on are not loaded".to_string(),
+            (Kind::StoppedAt, _) => {
+                let line = self.line.map_or(String::new(), |l| format!(" on line {l}"));
+                return format!(
+                    "the record{line} and every one after it are not loaded, instead of {}",
+                    row.rule
+                );
+            }
             (Kind::ShadowEpsilon, Some(e)) if self.line.is_none() => {
                 format!("rays leaving a surface test every object, counting hits with t > {e} only")
             }
@@ -1093,8 +1099,9 @@ pub(crate) trait Rulebook: Copy + Send + Sync {
     fn bounces(self) -> usize;
     /// What step 6 of spec §4.2 divides by.
     fn divisor(self) -> Divisor;
-    /// Hits at this distance or farther are misses (∞ but under far-clip).
-    fn far(self) -> f64;
+    /// Hits at this distance or farther are misses: under far-clip only (`None` as
+    /// written, which the compiler leaves out of the hit tests of [`AsWritten`]).
+    fn far(self) -> Option<f64>;
 }
 
 /// The rules of spec §4-§5 as written, known when the tracer is compiled.
@@ -1131,8 +1138,8 @@ impl Rulebook for AsWritten {
         Divisor::Path
     }
     #[inline(always)]
-    fn far(self) -> f64 {
-        f64::INFINITY
+    fn far(self) -> Option<f64> {
+        None
     }
 }
 
@@ -1166,8 +1173,8 @@ impl Rulebook for &Rules {
         self.divisor
     }
     #[inline(always)]
-    fn far(self) -> f64 {
-        self.far
+    fn far(self) -> Option<f64> {
+        (self.far < f64::INFINITY).then_some(self.far)
     }
 }
 

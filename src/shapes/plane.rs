@@ -52,8 +52,7 @@ impl Plane {
         // (A NaN t counts as behind.)
         let verdict = if t.is_nan() || t < 0.0 {
             Verdict::Behind
-        } else if z <= self.z_limit || self.z_limit == f64::INFINITY || z - self.z_limit <= slack()
-        {
+        } else if z <= self.z_limit || z - self.z_limit <= slack() {
             Verdict::Counts
         } else {
             Verdict::BeyondScreen

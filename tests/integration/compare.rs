@@ -27,7 +27,7 @@ fn stderr(output: &Output) -> String {
 }
 
 /// The JSON report of `compare --json ARGS`.
-fn report(args: &[&str]) -> (i32, Value) {
+pub(super) fn report(args: &[&str]) -> (i32, Value) {
     let mut all = vec!["--json"];
     all.extend_from_slice(args);
     let output = compare(&all);
@@ -38,7 +38,7 @@ fn report(args: &[&str]) -> (i32, Value) {
 
 /// Renders `scene` at `size` with `args` into `out` (the scene on standard input, as
 /// users run it; textures are found from the repository).
-fn render(scene: &Path, (w, h): (u32, u32), args: &[&str], out: &Path) {
+pub(super) fn render(scene: &Path, (w, h): (u32, u32), args: &[&str], out: &Path) {
     let text = std::fs::read(scene).unwrap();
     let (w, h) = (w.to_string(), h.to_string());
     let mut all = vec![w.as_str(), h.as_str(), "-o", out.to_str().unwrap()];
@@ -47,17 +47,17 @@ fn render(scene: &Path, (w, h): (u32, u32), args: &[&str], out: &Path) {
     assert!(output.status.success(), "{}", stderr(&output));
 }
 
-fn example(name: &str) -> PathBuf {
+pub(super) fn example(name: &str) -> PathBuf {
     // Relative, as a user types it: the trace commands in the reports name it so.
     PathBuf::from(format!("examples/{name}.txt"))
 }
 
-fn course(name: &str) -> Option<PathBuf> {
+pub(super) fn course(name: &str) -> Option<PathBuf> {
     course_scenes().map(|_| PathBuf::from(format!("../shared/course-scenes/{name}.txt")))
 }
 
 /// A binary PPM's size and pixels, read here without the program's reader.
-fn read_ppm(path: &Path) -> (usize, usize, Vec<[u8; 3]>) {
+pub(super) fn read_ppm(path: &Path) -> (usize, usize, Vec<[u8; 3]>) {
     let bytes = std::fs::read(path).unwrap();
     let header = String::from_utf8_lossy(&bytes[..20]).to_string();
     let fields: Vec<&str> = header.split_ascii_whitespace().take(4).collect();

@@ -288,7 +288,7 @@ fn the_readme_s_compare_example_is_what_the_program_prints() {
         .find("When no variant explains it, trace a pixel")
         .unwrap();
     let blocks = fenced_blocks(&readme[start..end], "text");
-    assert_eq!(blocks.len(), 3, "{blocks:?}");
+    assert_eq!(blocks.len(), 4, "{blocks:?}");
     let command = "legacy-rt compare --diagnose --diff diff.png examples/shadows.txt mine.ppm\n";
     assert_eq!(blocks[0], command);
     // The student's image: the scene without shadow rays, 160x120, as the README's trace
@@ -328,6 +328,29 @@ fn the_readme_s_compare_example_is_what_the_program_prints() {
         report.ends_with(&blocks[2]),
         "README:\n{}\nreport:\n{report}",
         blocks[2]
+    );
+    // Two mistakes, one of them the whole image's: the commands the README gives.
+    let tube = std::fs::read(root().join("examples/tube.txt")).unwrap();
+    let mistake = "legacy-rt --variant row-offset=1,behind-root < examples/tube.txt > tube.ppm";
+    let diagnose = "legacy-rt compare --diagnose examples/tube.txt tube.ppm";
+    for command in [mistake, diagnose] {
+        assert!(
+            readme[start..end].contains(&format!("`{command}`")),
+            "{command}"
+        );
+    }
+    let student = folder.join("tube.ppm");
+    let student = student.to_str().unwrap();
+    let args = ["--variant", "row-offset=1,behind-root", "-o", student];
+    assert!(super::common::run(&args, &tube).status.success());
+    let args = ["compare", "--diagnose", "examples/tube.txt", student];
+    let output = super::common::run(&args, b"");
+    assert_eq!(output.status.code(), Some(1));
+    let report = String::from_utf8(output.stdout).unwrap();
+    assert!(
+        report.contains(&blocks[3]),
+        "README:\n{}\nreport:\n{report}",
+        blocks[3]
     );
 }
 

@@ -142,11 +142,11 @@ fn rows_are_compares(dir: &Path, grades: &Value, flags: &[&str]) {
                     Some(0.0)
                 };
                 assert_eq!(row["points"].as_f64(), points, "{what}");
-                let top = report["diagnosis"][0]["variants"].as_array();
-                let ids: Vec<&str> = top
+                let causes = report["causes"].as_array();
+                let ids: Vec<&str> = causes
                     .into_iter()
                     .flatten()
-                    .map(|v| v.as_str().unwrap())
+                    .map(|c| c["id"].as_str().unwrap())
                     .collect();
                 assert_eq!(row["diagnosis"], ids.join(","), "{what}");
             }

@@ -6,6 +6,8 @@
 mod against;
 // The hard-case suite: the shipped kernel within 4 ulps, the textbook formula not.
 mod accuracy;
+// `compare --diagnose`'s causes: the mistakes of spec §7.5, alone and two together.
+mod causes;
 // The command line: sizes, formats, options, standard output holding only the image.
 mod cli;
 // `compare`: verdicts, reports, errors, and --diagnose naming every variant.

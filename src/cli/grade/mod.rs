@@ -137,7 +137,8 @@ pub struct Row {
     pub verdict: String,
     /// Pixels beyond the tolerance (none when nothing was compared).
     pub differing_pixels: Option<usize>,
-    /// The top diagnosis's variant ids, joined by commas; empty when none.
+    /// The ids of the causes compare's report states, in order, joined by commas (as
+    /// `--variant` takes them where they are the catalogue's); empty when none.
     pub diagnosis: String,
     /// The points given.
     pub points: f64,
@@ -494,10 +495,8 @@ impl Grader<'_> {
         if report.verdict == Verdict::Match {
             row.points = plan.points;
         }
-        if let Some(best) = report.diagnosis.iter().flatten().next() {
-            let ids: Vec<String> = best.variants.iter().map(|v| v.id()).collect();
-            row.diagnosis = ids.join(",");
-        }
+        let causes = report.causes.iter().flatten();
+        row.diagnosis = causes.map(|c| c.id.as_str()).collect::<Vec<_>>().join(",");
         row.explanation = compare::text::diagnosis(&report);
         let text_choices = Some(&choices).filter(|_| reference.is_some());
         let shown = escaped(&scene_shown);

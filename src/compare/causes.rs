@@ -1,0 +1,478 @@
+//! `compare --diagnose`'s causes: what the pixels support, in order, each with the count
+//! of the differing pixels it explains and of the agreeing ones it would break.
+//!
+//! Whole-image causes come first, since they hide everything else: every byte some
+//! levels off or the channels in another order (found from the two images alone), then
+//! the catalogue's variants (a row or column off, the image upside down, a scene rule:
+//! [`super::diagnose`]), and where none explains nearly all, jittered camera rays (each
+//! differing pixel against what the reference takes anywhere inside its pixel). Each
+//! cause found is undone and what remains is diagnosed again. A cause is stated only if
+//! it explains at least half of the differing pixels left and breaks almost none
+//! ([`supported`]); otherwise the report says no cause explains them.
+
+use super::diagnose::{Diagnosis, Focus, with_mask};
+use super::{Reference, differing, for_each_set, within};
+use crate::render::variant::Site;
+use crate::render::{self, Image, Options, Variant};
+use crate::scene::Scene;
+use serde::Serialize;
+
+/// A cause the pixels support.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Cause {
+    /// What it is: the variants that render it, as `--variant` takes them
+    /// (`row-offset=1`, `behind-root@12`), or `bytes+3`, `channels=bgr`, `jitter`.
+    pub id: String,
+    /// The variants, where it is the catalogue's (in JSON their ids).
+    pub variants: Vec<Variant>,
+    /// What it does, in words.
+    pub about: String,
+    /// How many of the differing pixels it explains (of those the causes before it left).
+    pub explains: usize,
+    /// Of how many.
+    pub of: usize,
+    /// How many pixels that agreed it would make differ.
+    pub breaks: usize,
+}
+
+/// A cause's share of what was left, at least: half.
+const HALF: f64 = 0.5;
+
+/// What a cause may break for each pixel it explains, at most: a twentieth.
+const BREAKS_PER_FIX: usize = 20;
+
+/// A share of the differing pixels that leaves nothing to look for: the causes found
+/// explain the image, and jitter is not looked for.
+const NEARLY_ALL: f64 = 0.95;
+
+/// Whether a cause that makes `explains` of `of` differing pixels agree and `breaks`
+/// agreeing ones differ is one the pixels support.
+pub fn supported(explains: usize, of: usize, breaks: usize) -> bool {
+    explains > 0 && explains as f64 >= HALF * of as f64 && breaks * BREAKS_PER_FIX <= explains
+}
+
+/// The diagnosis of `student` against `rendered` (the scene's image under `options`):
+/// the candidates the catalogue's search found, where the differences concentrate, and
+/// the causes the pixels support. `mask` says which pixels differ beyond `levels`.
+pub fn explain(
+    scene: &Scene,
+    options: &Options,
+    rendered: &Reference,
+    student: &Image,
+    levels: u8,
+    mask: (&[u64], usize),
+) -> (Vec<Diagnosis>, Option<Focus>, Vec<Cause>) {
+    let reference = &rendered.image;
+    let mut causes = Vec::new();
+    if mask.1 == 0 {
+        return (Vec::new(), None, causes);
+    }
+    // 1. The bytes of the whole image: undone before anything else is looked at.
+    let undone = bytes_cause(reference, student, levels, mask);
+    let (student, owned_mask) = match undone {
+        Some((cause, image)) => {
+            causes.push(cause);
+            let mask = differing(reference, &image, levels);
+            (std::borrow::Cow::Owned(image), Some(mask))
+        }
+        None => (std::borrow::Cow::Borrowed(student), None),
+    };
+    let mask = owned_mask.as_ref().map_or(mask, |(m, n)| (&m[..], *n));
+    if mask.1 == 0 {
+        return (Vec::new(), None, causes);
+    }
+    // 2. The catalogue.
+    let (found, focus) = with_mask(scene, options, rendered, &student, levels, mask, &[]);
+    let supported_causes = stated(&found, mask.1);
+    let explained: usize = supported_causes.iter().map(|c| c.explains).sum();
+    if explained as f64 >= NEARLY_ALL * mask.1 as f64 {
+        causes.extend(supported_causes);
+        return (found, focus, causes);
+    }
+    // 3. Jittered rays: the pixels that lie within what the reference takes inside their
+    // pixel are explained by them; what remains is diagnosed again.
+    if let Some((cause, repaired)) = jitter_cause(scene, options, reference, &student, levels, mask)
+    {
+        // Jittered rays leave hardly a differing pixel outside what the reference takes
+        // inside it; where they leave more, jitter stands only if another cause explains
+        // the rest (an object moved by a pixel or two looks jittered on its shading).
+        let clean = cause.explains as f64 >= NEARLY_ALL * cause.of as f64;
+        // Under jittered rays a pixel a second mistake changes is that mistake's colour
+        // seen from elsewhere in the pixel: on smooth shading, a few levels off.
+        let levels = levels.max(JITTERED_LEVELS);
+        let (mask, count) = differing(reference, &repaired, levels);
+        if count == 0 {
+            causes.push(cause);
+            return (Vec::new(), None, causes);
+        }
+        // The pixels jitter explains may lie on a second mistake's pixels too: they count
+        // neither for nor against it.
+        let mut explained = vec![0u64; mask.len()];
+        for (i, (&r, &s)) in reference.pixels.iter().zip(&repaired.pixels).enumerate() {
+            if r == s && student.pixels[i] != s {
+                explained[i / 64] |= 1 << (i % 64);
+            }
+        }
+        let (found_after, focus_after) = with_mask(
+            scene,
+            options,
+            rendered,
+            &repaired,
+            levels,
+            (&mask, count),
+            &explained,
+        );
+        let rest = stated(&found_after, count);
+        if clean || !rest.is_empty() {
+            causes.push(cause);
+            causes.extend(rest);
+            return (found_after, focus_after, causes);
+        }
+    }
+    causes.extend(supported_causes);
+    (found, focus, causes)
+}
+
+/// The causes among the catalogue's best candidate (one variant, or a pair) that the
+/// pixels support, of the `differing` pixels earlier causes left.
+fn stated(found: &[Diagnosis], differing: usize) -> Vec<Cause> {
+    let Some(best) = found.first() else {
+        return Vec::new();
+    };
+    let counts = |d: &Diagnosis| Some((d.explains?, d.breaks?));
+    let cause = |variants: &[Variant], explains: usize, of: usize, breaks: usize| Cause {
+        id: ids(variants),
+        variants: variants.to_vec(),
+        about: variants
+            .iter()
+            .map(|v| v.describe())
+            .collect::<Vec<_>>()
+            .join("; "),
+        explains,
+        of,
+        breaks,
+    };
+    let alone = |variants: &[Variant]| match best.variants == variants {
+        true => counts(best),
+        false => found
+            .iter()
+            .find(|d| d.variants == variants)
+            .and_then(counts),
+    };
+    // The first cause: of a pair, a whole image's (the camera's or the bytes') before a
+    // scene's, else the one that alone explains more.
+    let whole = |v: &[Variant]| matches!(v[0].kind.row().site, Site::Camera | Site::Bytes);
+    let explained_alone = |v: &[Variant]| alone(v).map_or(0, |(fixed, _)| fixed);
+    let mut order: Vec<&[Variant]> = best.variants.chunks(1).collect();
+    order.sort_by_key(|&v| (!whole(v), std::cmp::Reverse(explained_alone(v))));
+    let Some((fixed, broken)) = alone(order[0]) else {
+        return Vec::new();
+    };
+    let first = cause(order[0], fixed, differing, broken);
+    let [_, second] = order[..] else {
+        return match supported(fixed, differing, broken) {
+            true => vec![first],
+            false => Vec::new(),
+        };
+    };
+    let Some((both, both_broken)) = counts(best) else {
+        return Vec::new();
+    };
+    let (explains, of) = (both.saturating_sub(fixed), differing - fixed);
+    let second_cause = cause(second, explains, of, both_broken.saturating_sub(broken));
+    let second_supported = supported(explains, of, second_cause.breaks);
+    if supported(fixed, differing, broken) {
+        return match second_supported {
+            true => vec![first, second_cause],
+            false => vec![first],
+        };
+    }
+    // Two mistakes that each hide the other's pixels (a reader that stopped, in an image
+    // a row off): stated together where the pair is supported and each explains at least
+    // half of what the other alone leaves, the one that explains more alone first.
+    let Some((other, other_broken)) = alone(second) else {
+        return Vec::new();
+    };
+    let each = |alone: usize| supported(both.saturating_sub(alone), differing - alone, both_broken);
+    if !supported(both, differing, both_broken) || !each(fixed) || !each(other) {
+        return Vec::new();
+    }
+    let [(a, a_alone), (b, _)] = match other > fixed {
+        true => [(second, (other, other_broken)), (order[0], (fixed, broken))],
+        false => [(order[0], (fixed, broken)), (second, (other, other_broken))],
+    };
+    vec![
+        cause(a, a_alone.0, differing, a_alone.1),
+        cause(
+            b,
+            both.saturating_sub(a_alone.0),
+            differing - a_alone.0,
+            both_broken.saturating_sub(a_alone.1),
+        ),
+    ]
+}
+
+/// Variants' ids joined by commas, as `--variant` takes them.
+fn ids(variants: &[Variant]) -> String {
+    variants
+        .iter()
+        .map(|v| v.id())
+        .collect::<Vec<_>>()
+        .join(",")
+}
+
+/// The permutations of the channels other than RGB, by name, the most common mistake
+/// first (BGR, as some image libraries store pixels): where an image cannot tell two
+/// apart, the first is named.
+const ORDERS: [(&str, [usize; 3]); 5] = [
+    ("bgr", [2, 1, 0]),
+    ("rbg", [0, 2, 1]),
+    ("grb", [1, 0, 2]),
+    ("gbr", [1, 2, 0]),
+    ("brg", [2, 0, 1]),
+];
+
+/// Every byte shifted by one amount, or the channels in another order, over nearly all
+/// the differing pixels (`mask`, and how many): the cause, and the student's image with it
+/// undone. Each rule is first checked on the differing pixels, and given up as soon as
+/// more of them than [`NEARLY_ALL`] allows do not follow it; only a rule that holds there
+/// is counted on the agreeing pixels too.
+fn bytes_cause(
+    reference: &Image,
+    student: &Image,
+    levels: u8,
+    (mask, count): (&[u64], usize),
+) -> Option<(Cause, Image)> {
+    let differing: Vec<usize> = {
+        let mut all = Vec::with_capacity(count);
+        for_each_set(mask, |i| all.push(i));
+        all
+    };
+    let pair = |i: usize| (reference.pixels[i], student.pixels[i]);
+    let may_miss = count - (NEARLY_ALL * count as f64).ceil() as usize;
+    // How many differing pixels `follows` holds on, or None once too many miss.
+    let explained = |follows: &dyn Fn([u8; 3], [u8; 3]) -> bool| {
+        let mut missed = 0;
+        for &i in &differing {
+            let (r, s) = pair(i);
+            if !follows(r, s) {
+                missed += 1;
+                if missed > may_miss {
+                    return None;
+                }
+            }
+        }
+        Some(count - missed)
+    };
+    // The agreeing pixels `follows` would make differ.
+    let breaks = |follows: &dyn Fn([u8; 3], [u8; 3]) -> bool| {
+        let pairs = reference.pixels.iter().zip(&student.pixels);
+        (pairs.enumerate())
+            .filter(|&(i, (&r, &s))| mask[i / 64] >> (i % 64) & 1 == 0 && !follows(r, s))
+            .count()
+    };
+    let undone = |follows: &dyn Fn([u8; 3], [u8; 3]) -> bool| {
+        let mut image = student.clone();
+        for &i in &differing {
+            let (r, s) = pair(i);
+            if follows(r, s) {
+                image.pixels[i] = r;
+            }
+        }
+        image
+    };
+    // A shift: the student's byte is the reference's plus d, clamped to 0-255; d is read
+    // from the channel that moved most (one clamped at 0 or 255 moved less).
+    let shifted = |r: [u8; 3], d: i32| r.map(|c| (i32::from(c) + d).clamp(0, 255) as u8);
+    let mut tally = [0usize; 511];
+    for &i in &differing {
+        let (r, s) = pair(i);
+        let d = (0..3)
+            .map(|c| i32::from(s[c]) - i32::from(r[c]))
+            .max_by_key(|d| d.abs())
+            .unwrap_or(0);
+        if d != 0 && shifted(r, d) == s {
+            tally[(d + 255) as usize] += 1;
+        }
+    }
+    let (at, &most) = (tally.iter().enumerate()).max_by_key(|&(i, n)| (n, std::cmp::Reverse(i)))?;
+    let d = at as i32 - 255;
+    let shift = move |r: [u8; 3], s: [u8; 3]| within(shifted(r, d), s, levels);
+    if most + may_miss >= count {
+        let broken = breaks(&shift);
+        if supported(most, count, broken) {
+            let cause = Cause {
+                id: format!("bytes{d:+}"),
+                variants: Vec::new(),
+                about: format!(
+                    "every byte is {} level{} {} the reference's; compare --tolerance {} passes such an image",
+                    d.abs(),
+                    if d.abs() == 1 { "" } else { "s" },
+                    if d > 0 { "above" } else { "below" },
+                    d.abs()
+                ),
+                explains: most,
+                of: count,
+                breaks: broken,
+            };
+            return Some((cause, undone(&shift)));
+        }
+    }
+    for (name, order) in ORDERS {
+        let swapped = move |r: [u8; 3], s: [u8; 3]| within(order.map(|k| r[k]), s, levels);
+        let Some(explains) = explained(&swapped) else {
+            continue;
+        };
+        let broken = breaks(&swapped);
+        if !supported(explains, count, broken) {
+            continue;
+        }
+        let cause = Cause {
+            id: format!("channels={name}"),
+            variants: Vec::new(),
+            about: format!("the channels are written in the order {name}, not rgb"),
+            explains,
+            of: count,
+            breaks: broken,
+        };
+        return Some((cause, undone(&swapped)));
+    }
+    None
+}
+
+/// The most differing pixels the jitter check looks at: beyond it, every n-th.
+const JITTER_PIXELS: usize = 20_000;
+
+/// Of the pixels where the reference varies inside the pixel, the share that jittered
+/// rays change at least: measured at 320x240, from 21 % on the flat colours of course
+/// scene a02 to 86 % on examples/cones.txt's shading, where a sphere moved by two pixels
+/// changes 4-13 % (examples/shadows.txt, mirrors.txt, spec1.txt).
+const SPREAD: f64 = 0.15;
+
+/// How many pixels of the whole image the jitter check samples for its spread.
+const SPREAD_PIXELS: usize = 4096;
+
+/// The tolerance the causes after jitter are looked for at: what moving a ray inside
+/// its pixel changes on smooth shading.
+const JITTERED_LEVELS: u8 = 3;
+
+/// The most differing pixels jitter is undone on, each traced: beyond it, the sample's.
+const JITTER_REPAIR: usize = 200_000;
+
+/// Where in a pixel the jitter check samples the reference, in pixels from its centre:
+/// the centre, the corners, the edges' middles.
+const SUB_PIXEL: [(f64, f64); 9] = [
+    (0.0, 0.0),
+    (-0.5, -0.5),
+    (0.5, 0.5),
+    (-0.5, 0.5),
+    (0.5, -0.5),
+    (0.0, -0.5),
+    (0.0, 0.5),
+    (-0.5, 0.0),
+    (0.5, 0.0),
+];
+
+/// Whether the camera rays look jittered: at least half the differing pixels lie within
+/// what the reference takes anywhere inside their pixel (its value at the pixel's
+/// corners, edges and centre, per channel, within the tolerance), and a good share of the
+/// pixels where the reference varies inside the pixel differ, all over the image
+/// ([`SPREAD`]: a moved object changes pixels within its reach only). The cause, and the student's
+/// image with those pixels the reference's.
+fn jitter_cause(
+    scene: &Scene,
+    options: &Options,
+    reference: &Image,
+    student: &Image,
+    levels: u8,
+    (mask, count): (&[u64], usize),
+) -> Option<(Cause, Image)> {
+    let (w, h) = (options.width, options.height);
+    let every = count.div_ceil(JITTER_PIXELS).max(1);
+    let differs = |i: usize| mask[i / 64] >> (i % 64) & 1 == 1;
+    let differing_pixels = || (0..w * h).filter(|&i| differs(i));
+    let looked: Vec<usize> = differing_pixels().step_by(every).collect();
+    render::tracing(scene, options, |frame| {
+        let origin = frame.world(0, 0);
+        let step = glam::DVec3::new(
+            frame.world(1.min(w - 1), 0).x - origin.x,
+            frame.world(0, 1.min(h - 1)).y - origin.y,
+            0.0,
+        );
+        // The reference's bytes at the pixel's centre, corners and edges' middles, in turn.
+        let samples = |i: usize| {
+            let centre = frame.world(i % w, options.row_of(i / w));
+            SUB_PIXEL.iter().map(move |&(dx, dy)| {
+                frame.bytes_through(centre + glam::DVec3::new(dx * step.x, dy * step.y, 0.0))
+            })
+        };
+        // Whether the student's pixel i lies within what the reference takes inside the
+        // pixel, per channel, within the tolerance: the samples stop once it does.
+        let consistent = |i: usize| {
+            let s = student.pixels[i];
+            let (mut low, mut high) = ([255u8; 3], [0u8; 3]);
+            samples(i).any(|bytes| {
+                for c in 0..3 {
+                    low[c] = low[c].min(bytes[c]);
+                    high[c] = high[c].max(bytes[c]);
+                }
+                (0..3).all(|c| {
+                    s[c].saturating_add(levels) >= low[c] && s[c] <= high[c].saturating_add(levels)
+                })
+            })
+        };
+        // Whether the reference varies by more than the tolerance inside pixel i.
+        let varies = |i: usize| {
+            let (mut low, mut high) = ([255u8; 3], [0u8; 3]);
+            samples(i).any(|bytes| {
+                for c in 0..3 {
+                    low[c] = low[c].min(bytes[c]);
+                    high[c] = high[c].max(bytes[c]);
+                }
+                (0..3).any(|c| high[c] - low[c] > levels.saturating_add(1))
+            })
+        };
+        let agreeing = looked.iter().filter(|&&i| consistent(i)).count();
+        if (agreeing as f64) < HALF * looked.len() as f64 || agreeing == 0 {
+            return None;
+        }
+        // Jittered rays change the pixels wherever the reference varies inside a pixel, all
+        // over the image; a moved object changes them only within its reach. Of the pixels
+        // where the reference varies (a sample of the whole image), [`SPREAD`] differ.
+        let spread = (w * h).div_ceil(SPREAD_PIXELS).max(1);
+        let (mut varying, mut changed) = (0usize, 0usize);
+        for i in (0..w * h).step_by(spread).filter(|&i| varies(i)) {
+            varying += 1;
+            changed += usize::from(differs(i));
+        }
+        if (changed as f64) < SPREAD * varying as f64 {
+            return None;
+        }
+        // Undone on every differing pixel it explains (a sample where they are too many to
+        // trace), so that what remains is the rest of the student's mistakes.
+        let all = count <= JITTER_REPAIR;
+        let repair: Vec<usize> = match all {
+            true => differing_pixels().filter(|&i| consistent(i)).collect(),
+            false => looked.iter().copied().filter(|&i| consistent(i)).collect(),
+        };
+        let mut repaired = student.clone();
+        for &i in &repair {
+            repaired.pixels[i] = reference.pixels[i];
+        }
+        let explains = match all {
+            true => repair.len(),
+            false => (agreeing as f64 / looked.len() as f64 * count as f64).round() as usize,
+        };
+        let cause = Cause {
+            id: "jitter".into(),
+            variants: Vec::new(),
+            about: "the camera rays look jittered, or aimed elsewhere inside their pixel: these \
+                    differing pixels lie within what the reference takes inside their pixel"
+                .into(),
+            explains,
+            of: count,
+            breaks: 0,
+        };
+        Some((cause, repaired))
+    })
+}

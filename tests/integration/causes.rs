@@ -1,0 +1,331 @@
+//! `compare --diagnose`'s causes (issue 46): the mistakes real students' programs make
+//! (spec §7.5), alone and two together, are each named, whole-image ones first, and
+//! nothing else is claimed. The whole-image mistakes are made here from the reference's
+//! bytes (a row down, a column right, every byte +3, the channels swapped), not by the
+//! renderer's variants; a user's edits are made in the scene's text.
+
+use super::common::folder;
+use super::compare::{course, example, read_ppm, render, report};
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+
+/// The size the causes are looked for at: small, for the tests' time, and large enough
+/// for jitter's spread to show.
+const SIZE: (u32, u32) = (160, 120);
+
+/// The ids of the causes `compare --diagnose` states for `student` against `scene`, and
+/// the report.
+fn causes(scene: &Path, student: &Path) -> (Vec<String>, Value) {
+    let (scene, student) = (scene.to_str().unwrap(), student.to_str().unwrap());
+    let (code, json) = report(&["--diagnose", scene, student]);
+    assert_eq!(code, 1, "{scene}: {json:#}");
+    let ids = (json["causes"].as_array().unwrap().iter())
+        .map(|c| c["id"].as_str().unwrap().to_string())
+        .collect();
+    (ids, json)
+}
+
+/// A binary PPM of `pixels`, written here.
+fn write_ppm(path: &Path, (w, h): (usize, usize), pixels: &[[u8; 3]]) {
+    let mut bytes = format!("P6\n{w} {h}\n255\n").into_bytes();
+    bytes.extend(pixels.iter().flatten());
+    std::fs::write(path, bytes).unwrap();
+}
+
+/// The scenes the whole-image causes are tried on: two examples and, where the course's
+/// material is beside the repository, its spec1.
+fn scenes() -> Vec<PathBuf> {
+    let mut scenes = vec![example("shadows"), example("tube")];
+    scenes.extend(course("spec1"));
+    scenes
+}
+
+#[test]
+fn a_whole_image_mistake_made_from_the_bytes_is_named_and_nothing_else() {
+    let dir = folder("causes-whole-image");
+    type Mistake = fn(usize, usize, &[[u8; 3]]) -> Vec<[u8; 3]>;
+    let mistakes: [(&str, Mistake); 4] = [
+        // `rows - y` for `rows - 1 - y`: every output row holds the row above's pixels,
+        // the top row written twice.
+        ("row-offset=1", |w, _, p| {
+            let mut out = p[..w].to_vec();
+            out.extend_from_slice(&p[..p.len() - w]);
+            out
+        }),
+        // The image one pixel right: each row's first pixel written twice.
+        ("column-offset=-1", |w, _, p| {
+            (p.chunks(w))
+                .flat_map(|row| std::iter::once(row[0]).chain(row[..w - 1].iter().copied()))
+                .collect()
+        }),
+        ("bytes+3", |_, _, p| {
+            (p.iter())
+                .map(|px| px.map(|c| c.saturating_add(3)))
+                .collect()
+        }),
+        ("channels=bgr", |_, _, p| {
+            p.iter().map(|&[r, g, b]| [b, g, r]).collect()
+        }),
+    ];
+    for scene in scenes() {
+        let reference = dir.join("reference.ppm");
+        render(&scene, SIZE, &[], &reference);
+        let (w, h, pixels) = read_ppm(&reference);
+        for (id, mistake) in mistakes {
+            let student = dir.join("student.ppm");
+            write_ppm(&student, (w, h), &mistake(w, h, &pixels));
+            let (found, json) = causes(&scene, &student);
+            assert_eq!(found, [id], "{}: {json:#}", scene.display());
+            let cause = &json["causes"][0];
+            assert_eq!(cause["breaks"], 0, "{id}");
+            // What it explains: nearly all (a row's or a column's edge is the image's).
+            let (explains, of) = (cause["explains"].as_u64(), cause["of"].as_u64());
+            assert!(explains.unwrap() * 20 >= of.unwrap() * 19, "{id}: {cause}");
+        }
+    }
+}
+
+#[test]
+fn jittered_rays_are_named_as_jitter_and_not_as_a_scene_mistake() {
+    let dir = folder("causes-jitter");
+    let mut scenes = vec![example("shadows"), example("tube")];
+    scenes.extend(course("a04"));
+    for scene in scenes {
+        let student = dir.join("jittered.ppm");
+        // Another seed than the catalogue's: the footprint check finds it, not a render.
+        render(&scene, SIZE, &["--variant", "jitter=7"], &student);
+        let (found, json) = causes(&scene, &student);
+        assert_eq!(found, ["jitter"], "{}: {json:#}", scene.display());
+    }
+}
+
+#[test]
+fn two_mistakes_are_both_named_the_whole_image_s_first() {
+    let dir = folder("causes-two");
+    let mut cases = vec![
+        (
+            example("tube"),
+            "row-offset=1,behind-root",
+            vec!["row-offset=1", "behind-root"],
+        ),
+        (
+            example("tube"),
+            "jitter=5,z-tolerance=0.1",
+            vec!["jitter", "z-tolerance=0.1"],
+        ),
+        (
+            example("shadows"),
+            "jitter=7,no-shadow@25",
+            vec!["jitter", "no-shadow@25"],
+        ),
+    ];
+    // A reader that stopped at the floor (line 21), in an image one row off: each hides
+    // the other's pixels, and the one that explains more alone comes first.
+    if let Some(a04) = course("a04") {
+        let ids = vec!["row-offset=1", "stopped-at@21"];
+        cases.push((a04, "stopped-at@21,row-offset=1", ids));
+    }
+    for (scene, variants, expected) in cases {
+        let student = dir.join("student.ppm");
+        render(&scene, SIZE, &["--variant", variants], &student);
+        let (found, json) = causes(&scene, &student);
+        assert_eq!(found, expected, "{} {variants}: {json:#}", scene.display());
+        // Each cause's counts: of what the ones before it left.
+        let listed = json["causes"].as_array().unwrap();
+        let differing = json["differing_pixels"].as_u64().unwrap();
+        let mut left = differing;
+        for cause in listed.iter().filter(|c| c["id"] != "jitter") {
+            // Jitter's pixels are counted at the tolerance; the ones after it at a few
+            // levels more (what moving a ray inside its pixel changes).
+            if listed[0]["id"] != "jitter" {
+                assert_eq!(cause["of"].as_u64(), Some(left), "{variants}: {cause}");
+            }
+            left -= cause["explains"].as_u64().unwrap();
+        }
+    }
+}
+
+/// `scene`'s text with `from` replaced by `to` (which must be there), as a user edits it.
+fn edited(dir: &Path, scene: &Path, name: &str, from: &str, to: &str) -> PathBuf {
+    let text = std::fs::read_to_string(scene).unwrap();
+    assert!(text.contains(from), "{from}");
+    let path = dir.join(format!("{name}.txt"));
+    std::fs::write(&path, text.replacen(from, to, 1)).unwrap();
+    path
+}
+
+#[test]
+fn edits_made_by_hand_are_named_by_their_record_never_by_an_unrelated_variant() {
+    let dir = folder("causes-by-hand");
+    let scene = example("shadows");
+    // (name, the line as examples/shadows.txt has it, the edit, the record's line).
+    let edits = [
+        // The red sphere (line 11) 0.05 to the right: two pixels at this size.
+        (
+            "moved",
+            "-2.4 -1.5 -5  centre",
+            "-2.35 -1.5 -5  centre",
+            Some(11),
+        ),
+        // The red sphere's diffuse colour.
+        (
+            "diffuse",
+            "4 0.8 0.8     ambient\n5 5 5",
+            "4 0.8 0.8     ambient\n4 5 5",
+            Some(11),
+        ),
+        // The warm light moved by half a unit: no record of the catalogue is its.
+        (
+            "light",
+            "-5 3 -2       location",
+            "-4.5 3 -2       location",
+            None,
+        ),
+    ];
+    for (name, from, to, record) in edits {
+        let student = dir.join(format!("{name}.ppm"));
+        render(&edited(&dir, &scene, name, from, to), SIZE, &[], &student);
+        let (found, json) = causes(&scene, &student);
+        assert!(found.is_empty(), "{name}: {json:#}");
+        if let Some(line) = record {
+            let focus = json["focus"]["object"].as_str().unwrap();
+            assert_eq!(focus, format!("sphere (line {line})"), "{name}");
+        }
+    }
+    // The green sphere (line 18) deleted: every cause is an edit of its record.
+    let text = std::fs::read_to_string(&scene).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    let kept: Vec<&str> = (lines.iter().enumerate())
+        .filter(|(k, _)| !(17..23).contains(k))
+        .map(|(_, line)| *line)
+        .collect();
+    assert!(lines[17].starts_with("13") && lines[22].ends_with("radius"));
+    let deleted = dir.join("deleted.txt");
+    std::fs::write(&deleted, kept.join("\n") + "\n").unwrap();
+    let student = dir.join("deleted.ppm");
+    render(&deleted, SIZE, &[], &student);
+    let (found, json) = causes(&scene, &student);
+    assert!(!found.is_empty(), "{json:#}");
+    assert!(found.iter().all(|id| id.ends_with("@18")), "{json:#}");
+}
+
+#[test]
+fn a_cause_that_explains_under_half_is_never_stated() {
+    let dir = folder("causes-under-half");
+    let scene = example("shadows");
+    let student = dir.join("student.ppm");
+    render(&scene, SIZE, &["--variant", "no-shadows"], &student);
+    // The upper third of the image made white: differences no variant explains, more than
+    // those the missing shadows make (below the horizon).
+    let (w, h, mut pixels) = read_ppm(&student);
+    for pixel in &mut pixels[..w * h / 3] {
+        *pixel = [255, 255, 255];
+    }
+    write_ppm(&student, (w, h), &pixels);
+    let (found, json) = causes(&scene, &student);
+    assert!(found.is_empty(), "{json:#}");
+    // The candidate is still listed, with the counts that show why it is not a cause.
+    let best = &json["diagnosis"][0];
+    let (explains, differing) = (best["explains"].as_u64(), best["differing"].as_u64());
+    assert!(explains.unwrap() * 2 < differing.unwrap(), "{best}");
+    // And the text names no variant as the diagnosis.
+    let output = super::common::run(
+        &[
+            "compare",
+            "--diagnose",
+            scene.to_str().unwrap(),
+            student.to_str().unwrap(),
+        ],
+        b"",
+    );
+    let text = String::from_utf8(output.stdout).unwrap();
+    assert!(text.contains("diagnosis: no cause explains"), "{text}");
+    assert!(!text.contains("--variant"), "{text}");
+}
+
+/// The tube of examples/tube.txt lit from its other side, and seen from lower down: two
+/// more scenes where a ray's base lies inside the tube.
+fn tubes(dir: &Path) -> Vec<PathBuf> {
+    let tube = example("tube");
+    let lit = edited(
+        dir,
+        &tube,
+        "lit",
+        "3 -1.6 -3     location",
+        "-3 -1.6 -3     location",
+    );
+    let low = edited(
+        dir,
+        &tube,
+        "low",
+        "0 5 3         viewpoint",
+        "0 2 4         viewpoint",
+    );
+    vec![tube, lit, low]
+}
+
+#[test]
+fn each_mistake_of_spec_7_5_is_named_first_on_three_scenes() {
+    let dir = folder("causes-7-5");
+    let (spec1, a04, d06) = (course("spec1"), course("a04"), course("d06"));
+    let shadows = example("shadows");
+    let (tube, mirrors) = (example("tube"), example("mirrors"));
+    let three = |extra: Option<PathBuf>| {
+        let mut scenes = vec![shadows.clone(), tube.clone()];
+        scenes.extend(extra);
+        scenes
+    };
+    // (the variant rendered, the cause expected, the scenes).
+    let cases: Vec<(String, &str, Vec<PathBuf>)> = vec![
+        ("row-offset=1".into(), "row-offset=1", three(spec1.clone())),
+        (
+            "row-offset=-2".into(),
+            "row-offset=-2",
+            three(spec1.clone()),
+        ),
+        (
+            "column-offset=3".into(),
+            "column-offset=3",
+            three(spec1.clone()),
+        ),
+        ("jitter=3".into(), "jitter", three(a04.clone())),
+        ("behind-root".into(), "behind-root", tubes(&dir)),
+        (
+            "z-tolerance=0.1".into(),
+            "z-tolerance=0.1",
+            [tube.clone(), mirrors.clone()]
+                .into_iter()
+                .chain(spec1.clone())
+                .collect(),
+        ),
+        (
+            "far-clip=20".into(),
+            "far-clip=20",
+            [mirrors.clone()]
+                .into_iter()
+                .chain(spec1.clone())
+                .chain(d06)
+                .collect(),
+        ),
+    ];
+    let stopped = [(tube.clone(), 19), (shadows.clone(), 18)]
+        .into_iter()
+        .chain(spec1.map(|s| (s, 18)))
+        .chain(a04.map(|s| (s, 21)));
+    let run = |variant: &str, expected: &str, scene: &Path| {
+        let student = dir.join("student.ppm");
+        render(scene, SIZE, &["--variant", variant], &student);
+        let (found, json) = causes(scene, &student);
+        assert_eq!(found, [expected], "{} {variant}: {json:#}", scene.display());
+    };
+    for (variant, expected, scenes) in &cases {
+        assert!(scenes.len() >= 2, "{variant}");
+        for scene in scenes {
+            run(variant, expected, scene);
+        }
+    }
+    for (scene, line) in stopped {
+        let id = format!("stopped-at@{line}");
+        run(&id, &id, &scene);
+    }
+}
