@@ -10,8 +10,8 @@
 #
 # The scenes: against POV-Ray, the course scene spec1, examples/quadrics_gallery.txt and
 # the generated 1 000-object scene of tests/support/generated.rs (each .pov file lists
-# the differences that remain); against Tachyon, the two twins that
-# bench/tachyon_twins.py writes (7 and 113 objects). The lighting models differ, so this
+# the differences that remain); against Tachyon, the three twins that
+# bench/tachyon_twins.py writes (7, 113 and 102 objects). The lighting models differ, so this
 # compares work, not colours.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -55,7 +55,7 @@ done
 # Tachyon: the twins of bench/tachyon_twins.py, shadows on (-fullshade), no
 # anti-aliasing, one thread.
 python3 bench/tachyon_twins.py "$out"
-for name in twin_small twin_many; do
+for name in twin_small twin_many twin_grid; do
     echo "$name (legacy-rt vs Tachyon, bench/tachyon_twins.py)"
     python3 bench/alternate.py --runs "$RUNS" \
         "legacy-rt=$binary $WIDTH $HEIGHT < $out/$name.txt > $out/$name-twin.ppm" \

@@ -5,6 +5,9 @@ legacy-rt and as a Tachyon .dat file with the same geometry, into the folder giv
 
   twin_small.txt / .dat   a floor, a wall, 3 spheres, 2 open cylinders, one light
   twin_many.txt  / .dat   a floor, 64 spheres and 48 open cylinders (113 objects), one light
+  twin_grid.txt  / .dat   a floor, a wall and a regular 10 x 10 grid of small spheres
+                          rising row by row from the floor towards the wall, one light:
+                          the scene Tachyon's uniform grid favours (issue 47)
 
 The cameras coincide: legacy-rt's eye at (0, 0, 3) looks through the 8 x 6 window at
 z = 0, a horizontal half-angle of atan(4/3); Tachyon's camera at the same point with
@@ -78,6 +81,9 @@ def main():
     cylinders = [((-6 + 2 * i, -3, -7 - 2 * j), 1.5, 0.3, (0.3, 1, 0.3 + 0.05 * j))
                  for i in range(7) for j in range(7)][:48]
     write(folder, "twin_many", spheres=spheres, cylinders=cylinders, planes=[floor])
+    grid = [((-6.3 + 1.4 * i, -2.5 + 0.6 * j, -5 - j), 0.4, (0.3 + 0.07 * i, 0.3, 1 - 0.07 * j))
+            for i in range(10) for j in range(10)]
+    write(folder, "twin_grid", spheres=grid, cylinders=[], planes=[floor, wall])
 
 if __name__ == "__main__":
     main()

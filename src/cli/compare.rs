@@ -305,13 +305,7 @@ pub(super) fn add_trace_commands(
     options: &legacy_rt::Options,
     scene: &str,
 ) {
-    let command = |x, y| compare::text::trace_command(choices, options, scene, x, y);
-    for worst in &mut report.worst {
-        worst.trace = Some(command(worst.x, worst.y));
-    }
-    for found in report.diagnosis.iter_mut().flatten() {
-        found.trace = found.pixel.map(|[x, y]| command(x, y));
-    }
+    report.add_trace_commands(|x, y| compare::text::trace_command(choices, options, scene, x, y));
 }
 
 /// Prints the report, as text or JSON, on standard output.

@@ -33,6 +33,16 @@ pub struct Cause {
     pub of: usize,
     /// How many pixels that agreed it would make differ.
     pub breaks: usize,
+    /// For a variant of one record: what it is, "cylinder (line 11)".
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub subject: Option<String>,
+    /// A pixel it explains (x, y from the lower left, as `trace` takes them).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub pixel: Option<[usize; 2]>,
+    /// The command that traces `pixel` in the reference, when the command line knows the
+    /// scene's file name.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub trace: Option<String>,
 }
 
 /// A cause's share of what was left, at least: half.
@@ -140,8 +150,13 @@ fn stated(found: &[Diagnosis], differing: usize) -> Vec<Cause> {
         return Vec::new();
     };
     let counts = |d: &Diagnosis| Some((d.explains?, d.breaks?));
+    let found_alone = |variants: &[Variant]| found.iter().find(|d| d.variants == variants);
     let cause = |variants: &[Variant], explains: usize, of: usize, breaks: usize| Cause {
         id: ids(variants),
+        subject: found_alone(variants).and_then(|d| d.subject.clone()),
+        // Its own pixel where it was rendered alone, else the pair's.
+        pixel: found_alone(variants).and_then(|d| d.pixel).or(best.pixel),
+        trace: None,
         variants: variants.to_vec(),
         about: variants
             .iter()
@@ -152,13 +167,7 @@ fn stated(found: &[Diagnosis], differing: usize) -> Vec<Cause> {
         of,
         breaks,
     };
-    let alone = |variants: &[Variant]| match best.variants == variants {
-        true => counts(best),
-        false => found
-            .iter()
-            .find(|d| d.variants == variants)
-            .and_then(counts),
-    };
+    let alone = |variants: &[Variant]| found_alone(variants).and_then(counts);
     // The first cause: of a pair, a whole image's (the camera's or the bytes') before a
     // scene's, else the one that alone explains more.
     let whole = |v: &[Variant]| matches!(v[0].kind.row().site, Site::Camera | Site::Bytes);
@@ -271,6 +280,11 @@ fn bytes_cause(
             .filter(|&(i, (&r, &s))| mask[i / 64] >> (i % 64) & 1 == 0 && !follows(r, s))
             .count()
     };
+    // The first differing pixel `follows` explains, as `trace` takes it.
+    let first = |follows: &dyn Fn([u8; 3], [u8; 3]) -> bool| {
+        let i = differing.iter().find(|&&i| follows(pair(i).0, pair(i).1))?;
+        Some(super::pixel_at(*i, reference.width, reference.height))
+    };
     let undone = |follows: &dyn Fn([u8; 3], [u8; 3]) -> bool| {
         let mut image = student.clone();
         for &i in &differing {
@@ -314,6 +328,9 @@ fn bytes_cause(
                 explains: most,
                 of: count,
                 breaks: broken,
+                subject: None,
+                pixel: first(&shift),
+                trace: None,
             };
             return Some((cause, undone(&shift)));
         }
@@ -334,6 +351,9 @@ fn bytes_cause(
             explains,
             of: count,
             breaks: broken,
+            subject: None,
+            pixel: first(&swapped),
+            trace: None,
         };
         return Some((cause, undone(&swapped)));
     }
@@ -432,7 +452,8 @@ fn jitter_cause(
                 (0..3).any(|c| high[c] - low[c] > levels.saturating_add(1))
             })
         };
-        let agreeing = looked.iter().filter(|&&i| consistent(i)).count();
+        let verdicts: Vec<bool> = looked.iter().map(|&i| consistent(i)).collect();
+        let agreeing = verdicts.iter().filter(|&&v| v).count();
         if (agreeing as f64) < HALF * looked.len() as f64 || agreeing == 0 {
             return None;
         }
@@ -451,9 +472,17 @@ fn jitter_cause(
         // Undone on every differing pixel it explains (a sample where they are too many to
         // trace), so that what remains is the rest of the student's mistakes.
         let all = count <= JITTER_REPAIR;
+        // The k-th differing pixel was looked at already where k is a multiple of `every`.
+        let looked_at = |k: usize| k.is_multiple_of(every).then(|| verdicts[k / every]);
         let repair: Vec<usize> = match all {
-            true => differing_pixels().filter(|&i| consistent(i)).collect(),
-            false => looked.iter().copied().filter(|&i| consistent(i)).collect(),
+            true => (differing_pixels().enumerate())
+                .filter(|&(k, i)| looked_at(k).unwrap_or_else(|| consistent(i)))
+                .map(|(_, i)| i)
+                .collect(),
+            false => (looked.iter().zip(&verdicts))
+                .filter(|&(_, &v)| v)
+                .map(|(&i, _)| i)
+                .collect(),
         };
         let mut repaired = student.clone();
         for &i in &repair {
@@ -472,6 +501,9 @@ fn jitter_cause(
             explains,
             of: count,
             breaks: 0,
+            subject: None,
+            pixel: (repair.first()).map(|&i| super::pixel_at(i, w, h)),
+            trace: None,
         };
         Some((cause, repaired))
     })

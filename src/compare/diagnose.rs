@@ -19,7 +19,9 @@
 //! take).
 //! MAX_DIST is not guessed from a list: one render with long paths records each pixel's
 //! bytes after each mirror bounce ([`render::path_agreement`]), which gives the image
-//! under every MAX_DIST at once, and the best D is read off ([`estimate_max_dist`]).
+//! under every MAX_DIST at once, and the best D is read off ([`estimate_max_dist`]); the
+//! same sweep on the large sample ([`render::path_agreement_at`]) first tells whether
+//! that render is worth making.
 
 use super::{Reference, within};
 use crate::render::variant::{Row, Scope};
@@ -40,6 +42,11 @@ const SHORTLIST: usize = 8;
 
 /// An agreement that explains the image: MAX_DIST is not estimated beyond it.
 const EXPLAINED: f64 = 0.999;
+
+/// The share of the gap to full agreement that MAX_DIST's best D must close on the large
+/// sample before every pixel is rendered for it: well below the half a cause must explain,
+/// for the sample's error (512 differing pixels: some 2 %).
+const WORTH: f64 = 0.125;
 
 /// How many of the objects and of the lights most involved in the differences are
 /// tried with each edit of one record.
@@ -203,9 +210,9 @@ pub(crate) fn with_mask(
         true => Reach::of(scene, &given, variants),
         false => None,
     };
-    // The agreement a candidate would have, from its bytes on sample `k`; and a pixel it
-    // explains.
-    let estimate_on = |k: usize, variants: &[Variant]| -> Option<(f64, Option<usize>)> {
+    // The agreement a candidate would have, from its bytes on sample `k`; and the sample's
+    // differing pixels it explains.
+    let estimate_on = |k: usize, variants: &[Variant]| -> Option<(f64, Vec<usize>)> {
         let options = variants
             .iter()
             .try_fold(*options, |o, &v| o.with_variant(v).ok())?;
@@ -230,7 +237,7 @@ pub(crate) fn with_mask(
         let share = |n: usize, of: usize| n as f64 / of.max(1) as f64;
         let after = differing as f64 * share(fixed.len(), sample_d.len())
             + agreeing as f64 * share(kept, sample_a.len());
-        Some((after / total, fixed.first().copied()))
+        Some((after / total, fixed))
     };
     let scorer = Scorer {
         scene,
@@ -292,12 +299,19 @@ pub(crate) fn with_mask(
     shortlist(&mut first_round);
     let mut estimated: Vec<Tried> = (first_round.into_iter())
         .filter_map(|(variants, _)| {
-            let (agreement, pixel) = estimate(&variants)?;
+            let (agreement, fixed) = estimate(&variants)?;
+            // A pixel the offset leaves uncovered shows what a buffer held, not the ray.
+            let pixel = {
+                let shown = uncovered(&variants, reference.width, reference.height);
+                (fixed.iter().find(|&&i| !shown(i)))
+                    .or(fixed.first())
+                    .copied()
+            };
             (agreement > before).then_some(Tried {
+                pixel,
                 variants,
                 agreement,
                 max_dist_range: None,
-                pixel,
                 counts: None,
             })
         })
@@ -322,9 +336,25 @@ pub(crate) fn with_mask(
     let reflected = paths.iter().filter(|path| path.reflected).count();
     let at_most = before + (1.0 - before) * reflected as f64 / paths.len().max(1) as f64;
     let best = found.iter().map(|t| t.agreement).fold(before, f64::max);
+    // And first on the large sample: only a D that closes a good part of the gap there is
+    // worth the render of every pixel.
+    let worth_rendering = || {
+        let (sample, split) = &samples[1];
+        let (state, changes) =
+            render::path_agreement_at(scene, &probe(options), sample, |k, b| agrees(sample[k], b));
+        let share = |n: usize, of: usize| n as f64 / of.max(1) as f64;
+        let (d_weight, a_weight) = (
+            share(differing, *split),
+            share(agreeing, sample.len() - split),
+        );
+        let weight = |k: usize| if k < *split { d_weight } else { a_weight };
+        best_max_dist(&state, &changes, weight, options.max_dist)
+            .is_some_and(|(_, _, agreeing)| agreeing / total > best + (1.0 - best) * WORTH)
+    };
     if reflected > 0
         && at_most > best
         && best < EXPLAINED
+        && worth_rendering()
         && let Some((d, range, agreement)) = estimate_max_dist(scene, options, student, levels)
         && agreement > before
     {
@@ -356,11 +386,17 @@ pub(crate) fn with_mask(
         shortlist(&mut pairs);
         let pairs = (pairs.into_iter()).filter_map(|(pair, _)| Some((pair[1], estimate(&pair)?)));
         let top = pairs.max_by(|a, b| a.1.0.total_cmp(&b.1.0).then(std::cmp::Ordering::Greater));
-        if let Some((partner, (estimated, pixel))) = top
+        if let Some((partner, (estimated, fixed))) = top
             && estimated > best.agreement
             && let Some((agreement, counts)) = exact(&[first, partner])
             && agreement > best.agreement
         {
+            // The pair's pixel: one the first alone leaves, so that it shows the partner
+            // (the samples are in pixel order).
+            let alone = estimate(&[first]).map_or(Vec::new(), |(_, fixed)| fixed);
+            let pixel = (fixed.iter().find(|i| alone.binary_search(i).is_err()))
+                .or(fixed.first())
+                .copied();
             let range = match (first.kind, partner.kind) {
                 (Kind::MaxDist, _) => best.max_dist_range,
                 (_, Kind::MaxDist) => found.iter().find_map(|t| t.max_dist_range),
@@ -404,7 +440,7 @@ pub(crate) fn with_mask(
             agreement_before: before,
             agreement_after: tried.agreement,
             max_dist_range: tried.max_dist_range,
-            pixel: tried.pixel.map(|i| [i % width, height - 1 - i / width]),
+            pixel: (tried.pixel).map(|i| super::pixel_at(i, width, height)),
             trace: None,
             explains: tried.counts.map(|c| c.fixed),
             breaks: tried.counts.map(|c| c.broken),
@@ -857,31 +893,57 @@ pub fn estimate_max_dist(
     if !scene.objects.iter().any(reflects) {
         return None;
     }
-    let probe = Options {
-        max_dist: PROBE_LIMIT.max(options.max_dist),
-        ..*options
-    };
-    let (mut state, changes) = render::path_agreement(scene, &probe, |pixel, bytes| {
+    let probe = probe(options);
+    let (state, changes) = render::path_agreement(scene, &probe, |pixel, bytes| {
         within(bytes, student.pixels[pixel], levels)
     });
-    let mut agreeing = state.iter().filter(|&&s| s).count();
+    let (d, range, best) = best_max_dist(&state, &changes, |_| 1.0, options.max_dist)?;
+    Some((d, range, best / student.pixels.len().max(1) as f64))
+}
+
+/// The options [`estimate_max_dist`] renders with: MAX_DIST at [`PROBE_LIMIT`] or more.
+fn probe(options: &Options) -> Options {
+    Options {
+        max_dist: PROBE_LIMIT.max(options.max_dist),
+        ..*options
+    }
+}
+
+/// Of the pixels whose bytes agree under the smallest MAX_DIST (`state`) and change as D
+/// grows (`changes`, by D), each counted with its `weight`: the roundest D that agrees
+/// best, its range, and that agreement (the weights' sum); `None` where none agrees
+/// better than the `current` D.
+fn best_max_dist(
+    state: &[bool],
+    changes: &[render::PathChange],
+    weight: impl Fn(usize) -> f64,
+    current: f64,
+) -> Option<(f64, [f64; 2], f64)> {
+    let mut state = state.to_vec();
+    let mut agreeing: f64 = (state.iter().enumerate())
+        .filter(|&(_, &s)| s)
+        .map(|(i, _)| weight(i))
+        .sum();
     // Agreement on each interval [start, next start) of D.
-    let mut intervals: Vec<(f64, usize)> = vec![(0.0, agreeing)];
+    let mut intervals: Vec<(f64, f64)> = vec![(0.0, agreeing)];
     for change in changes {
         let pixel = change.pixel as usize;
-        agreeing = agreeing + usize::from(change.agrees) - usize::from(state[pixel]);
+        let w = weight(pixel);
+        agreeing += f64::from(u8::from(change.agrees)) * w - f64::from(u8::from(state[pixel])) * w;
         state[pixel] = change.agrees;
         match intervals.last_mut() {
             Some(last) if last.0 == change.start => last.1 = agreeing,
             _ => intervals.push((change.start, agreeing)),
         }
     }
-    let end = |i: usize| intervals.get(i + 1).map_or(probe.max_dist, |next| next.0);
-    let current = intervals
+    let limit = PROBE_LIMIT.max(current);
+    let end = |i: usize| intervals.get(i + 1).map_or(limit, |next| next.0);
+    let at = intervals.iter().rposition(|&(start, _)| start <= current)?;
+    let best = intervals
         .iter()
-        .rposition(|&(start, _)| start <= options.max_dist)?;
-    let best = intervals.iter().map(|&(_, count)| count).max()?;
-    if best <= intervals[current].1 {
+        .map(|&(_, count)| count)
+        .fold(f64::MIN, f64::max);
+    if best <= intervals[at].1 {
         return None;
     }
     // Among the ranges that agree best, the one with the roundest D (the student wrote
@@ -891,7 +953,7 @@ pub fn estimate_max_dist(
         .map(|(i, &(low, _))| (roundest(low, end(i)), [low, end(i)]))
         .max_by(|((d1, step1), _), ((d2, step2), _)| step1.total_cmp(step2).then(d2.total_cmp(d1)))
         .map(|((d, _), range)| (d, range))?;
-    Some((d, range, best as f64 / student.pixels.len().max(1) as f64))
+    Some((d, range, best))
 }
 
 /// The roundest number D with low <= D < high and D > 0, and its roundness: D is a

@@ -220,6 +220,22 @@ pub struct Report {
     pub expected_size: Option<[usize; 2]>,
 }
 
+impl Report {
+    /// Gives each pixel the report names (the worst, each diagnosis', each cause's) the
+    /// `trace` command that shows it: `command(x, y)`.
+    pub fn add_trace_commands(&mut self, command: impl Fn(usize, usize) -> String) {
+        for worst in &mut self.worst {
+            worst.trace = Some(command(worst.x, worst.y));
+        }
+        for found in self.diagnosis.iter_mut().flatten() {
+            found.trace = found.pixel.map(|[x, y]| command(x, y));
+        }
+        for cause in self.causes.iter_mut().flatten() {
+            cause.trace = cause.pixel.map(|[x, y]| command(x, y));
+        }
+    }
+}
+
 /// The largest channel difference of two pixels.
 #[inline]
 pub fn pixel_difference(a: [u8; 3], b: [u8; 3]) -> u8 {
@@ -371,6 +387,15 @@ pub fn reference_at(scene: &Scene, options: &Options, precision: f64, diagnose: 
     }
 }
 
+/// Pixel `i` of an image `width` by `height` (row by row from the top, as files hold
+/// them) as (x, y) from the lower left, the position every report names. `trace` takes
+/// the pixel a ray is traced for, which the position holds through the options' row map
+/// ([`text::trace_command`] applies it: `--variant upside-down` moves it).
+pub fn pixel_at(i: usize, width: usize, height: usize) -> [usize; 2] {
+    let width = width.max(1);
+    [i % width, height - 1 - i / width]
+}
+
 /// Compares `student` with `reference`; with the scene (and the options the reference
 /// was rendered with) the differences are grouped by object, and diagnosed if asked.
 pub fn report(
@@ -461,9 +486,10 @@ pub fn report(
         .map(|&key| {
             let i = (key & ((1 << 109) - 1)) as usize;
             let (a, b) = (reference.pixels[i], student.pixels[i]);
+            let [x, y] = pixel_at(i, width, height);
             Worst {
-                x: i % width,
-                y: height - 1 - i / width,
+                x,
+                y,
                 reference: a,
                 student: b,
                 difference: pixel_difference(a, b),

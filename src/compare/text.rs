@@ -33,8 +33,9 @@ pub fn shell_word(path: &str) -> String {
     word
 }
 
-/// The `trace` command that explains pixel (x, y) of the reference rendered from the
-/// scene file `scene` at `options`' size with `choices`.
+/// The `trace` command that explains the pixel at (x, y) from the lower left of the
+/// reference rendered from the scene file `scene` at `options`' size with `choices`: the
+/// pixel whose ray is drawn there (under `--variant upside-down`, the mirrored row's).
 pub fn trace_command(
     choices: &Choices,
     options: &Options,
@@ -43,6 +44,7 @@ pub fn trace_command(
     y: usize,
 ) -> String {
     let (w, h) = (options.width, options.height);
+    let y = options.row_of(h - 1 - y.min(h - 1));
     let flags = choices.flags();
     format!(
         "legacy-rt trace {x} {y} {w} {h}{flags} < {}",
@@ -312,17 +314,22 @@ pub fn diagnosis(report: &Report) -> Vec<String> {
                 .to_string(),
         );
         for (k, cause) in causes.iter().enumerate() {
-            let what = match cause.variants.is_empty() {
-                true => format!("{} ({})", cause.id, cause.about),
-                false => format!("--variant {}", cause.id),
+            let what = match (cause.variants.is_empty(), &cause.subject) {
+                (true, _) => format!("{} ({})", cause.id, cause.about),
+                (false, Some(subject)) => format!("--variant {} ({subject})", cause.id),
+                (false, None) => format!("--variant {}", cause.id),
             };
-            line(format!(
+            let mut text = format!(
                 "  {}. {what}: explains {} of {}, breaks {}",
                 k + 1,
                 thousands(cause.explains),
                 thousands(cause.of),
                 thousands(cause.breaks)
-            ));
+            );
+            if let Some(trace) = &cause.trace {
+                text += &format!("; `{trace}` traces one");
+            }
+            line(text);
         }
         // The best, when it is one record's edit that explains nearly everything, in
         // words a student acts on.

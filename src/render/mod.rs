@@ -758,7 +758,7 @@ fn at_pixels<T>(
     scene: &Scene,
     options: &Options,
     indices: &[usize],
-    per_pixel: impl Fn(&Setup, &Tracer<&Rules>, [u8; 3], usize, usize) -> T,
+    mut per_pixel: impl FnMut(&Setup, &Tracer<&Rules>, [u8; 3], usize, usize) -> T,
 ) -> Vec<T> {
     with_tracer(
         scene,
@@ -927,6 +927,64 @@ pub fn path_agreement(
     options: &Options,
     agrees: impl Fn(usize, [u8; 3]) -> bool + Sync,
 ) -> (Vec<bool>, Vec<PathChange>) {
+    let setup = Setup::for_image(scene, options);
+    let tracer = setup.tracer(options);
+    let changes = std::sync::Mutex::new(Vec::new());
+    let path = |x: usize, y: usize| -> bool {
+        let pixel = setup.row_of(y, options.height) * options.width + x;
+        let tile = tracer.objects.tile(x, y);
+        let (first, mine) = path_changes(&setup, options, &tracer, tile, (x, y), pixel, &agrees);
+        if !mine.is_empty()
+            && let Ok(mut changes) = changes.lock()
+        {
+            changes.extend(mine);
+        }
+        first
+    };
+    let first = each_pixel(&setup, options, path, &mut |_| {});
+    let mut changes = changes.into_inner().unwrap_or_default();
+    by_distance(&mut changes);
+    (first, changes)
+}
+
+/// [`path_agreement`] on the pixels `indices` (output order) only: `agrees` and the
+/// changes take a pixel's position in `indices`, not its index in the image.
+pub fn path_agreement_at(
+    scene: &Scene,
+    options: &Options,
+    indices: &[usize],
+    agrees: impl Fn(usize, [u8; 3]) -> bool,
+) -> (Vec<bool>, Vec<PathChange>) {
+    let mut changes = Vec::new();
+    let mut at = 0;
+    let first = at_pixels(scene, options, indices, |setup, tracer, _, x, y| {
+        let tile = tracer.objects.tile(x, y);
+        let (first, mine) = path_changes(setup, options, tracer, tile, (x, y), at, &agrees);
+        changes.extend(mine);
+        at += 1;
+        first
+    });
+    by_distance(&mut changes);
+    (first, changes)
+}
+
+/// Sorts path changes by D, then by pixel; a pixel's own changes were pushed in path
+/// order and the sort is stable, so they stay in that order.
+fn by_distance(changes: &mut [PathChange]) {
+    changes.sort_by(|a, b| a.start.total_cmp(&b.start).then(a.pixel.cmp(&b.pixel)));
+}
+
+/// One pixel's path for [`path_agreement`], numbered `pixel`: whether its bytes agree
+/// under the smallest MAX_DIST, and where along the path they change.
+fn path_changes<B: Rulebook>(
+    setup: &Setup,
+    options: &Options,
+    tracer: &Tracer<B>,
+    tile: Option<Tile>,
+    (x, y): (usize, usize),
+    pixel: usize,
+    agrees: &impl Fn(usize, [u8; 3]) -> bool,
+) -> (bool, Vec<PathChange>) {
     /// Each segment's start and the colour after it.
     struct Path(Vec<(f64, DVec3)>);
     impl Recorder for Path {
@@ -947,48 +1005,29 @@ pub fn path_agreement(
             }
         }
     }
-    let setup = Setup::for_image(scene, options);
-    let tracer = setup.tracer(options);
-    let changes = std::sync::Mutex::new(Vec::new());
-    let width = options.width;
-    let path = |x: usize, y: usize| -> bool {
-        let pixel = setup.row_of(y, options.height) * width + x;
-        let mut path = Path(Vec::new());
-        if let Some(ray) = setup.camera.ray(x, y) {
-            let from = From::Eye(tracer.objects.tile(x, y));
-            with_kernel!(options.kernel, K => tracer.trace::<K>(ray, from, &mut path));
+    let mut path = Path(Vec::new());
+    if let Some(ray) = setup.camera.ray(x, y) {
+        with_kernel!(options.kernel, K => tracer.trace::<K>(ray, From::Eye(tile), &mut path));
+    }
+    let bytes = |colour: DVec3| setup.rules.bytes(colour);
+    let mut entries = path.0.iter();
+    let first = entries.next().map_or(DVec3::ZERO, |&(_, c)| c);
+    let mut last = bytes(first);
+    let mut mine = Vec::new();
+    // Segments that change no byte (deep bounces between two mirrors) are left out: D
+    // passing them gives the same image.
+    for &(start, colour) in entries {
+        let now = bytes(colour);
+        if now != last {
+            mine.push(PathChange {
+                start,
+                pixel: pixel as u32,
+                agrees: agrees(pixel, now),
+            });
+            last = now;
         }
-        let bytes = |colour: DVec3| setup.rules.bytes(colour);
-        let mut entries = path.0.iter();
-        let first = entries.next().map_or(DVec3::ZERO, |&(_, c)| c);
-        let mut last = bytes(first);
-        let mut mine = Vec::new();
-        // Segments that change no byte (deep bounces between two mirrors) are left out:
-        // D passing them gives the same image.
-        for &(start, colour) in entries {
-            let now = bytes(colour);
-            if now != last {
-                mine.push(PathChange {
-                    start,
-                    pixel: pixel as u32,
-                    agrees: agrees(pixel, now),
-                });
-                last = now;
-            }
-        }
-        if !mine.is_empty()
-            && let Ok(mut changes) = changes.lock()
-        {
-            changes.extend(mine);
-        }
-        agrees(pixel, bytes(first))
-    };
-    let first = each_pixel(&setup, options, path, &mut |_| {});
-    let mut changes = changes.into_inner().unwrap_or_default();
-    // By D, then by pixel; a pixel's own changes were pushed in path order and the sort
-    // is stable, so they stay in that order.
-    changes.sort_by(|a, b| a.start.total_cmp(&b.start).then(a.pixel.cmp(&b.pixel)));
-    (first, changes)
+    }
+    (agrees(pixel, bytes(first)), mine)
 }
 
 /// The colour seen along one ray from the eye (spec §4.2 with total_dist = 0 and no

@@ -130,8 +130,22 @@ fn two_mistakes_are_both_named_the_whole_image_s_first() {
         render(&scene, SIZE, &["--variant", variants], &student);
         let (found, json) = causes(&scene, &student);
         assert_eq!(found, expected, "{} {variants}: {json:#}", scene.display());
-        // Each cause's counts: of what the ones before it left.
+        // Each cause names a pixel that differs, with the command that traces it.
         let listed = json["causes"].as_array().unwrap();
+        let reference = dir.join("reference.ppm");
+        render(&scene, SIZE, &[], &reference);
+        let ((w, h, theirs), (_, _, ours)) = (read_ppm(&student), read_ppm(&reference));
+        for cause in listed {
+            let [x, y] = [0, 1].map(|k| cause["pixel"][k].as_u64().unwrap() as usize);
+            let at = (h - 1 - y) * w + x;
+            assert_ne!(theirs[at], ours[at], "{variants}: {cause}");
+            let trace = cause["trace"].as_str().unwrap();
+            assert!(
+                trace.starts_with(&format!("legacy-rt trace {x} {y} {w} {h}")),
+                "{trace}"
+            );
+        }
+        // Each cause's counts: of what the ones before it left.
         let differing = json["differing_pixels"].as_u64().unwrap();
         let mut left = differing;
         for cause in listed.iter().filter(|c| c["id"] != "jitter") {

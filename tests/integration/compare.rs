@@ -428,57 +428,81 @@ fn the_reports_numbers_are_those_of_the_two_files() {
 
 #[test]
 fn each_worst_pixel_comes_with_the_trace_command_that_explains_it() {
-    let scene = example("note003_records");
-    let dir = folder("worst");
-    let student = dir.join("student.ppm");
-    render(
-        &scene,
-        (64, 48),
-        &["--variant", "facing-normals", "--stage", "diffuse"],
-        &student,
+    // The reference's options, the student's, the flags the trace command carries, and
+    // whether rows are mirrored: under upside-down the pixel at (x, y) from the lower left
+    // holds the ray of row H-1-y, and its command must trace that one.
+    type Case = (
+        &'static str,
+        &'static [&'static str],
+        &'static [&'static str],
+        &'static str,
+        bool,
     );
-    let (status, json) = report(&[
-        "--stage",
-        "diffuse",
-        "--worst",
-        "3",
-        scene.to_str().unwrap(),
-        student.to_str().unwrap(),
-    ]);
-    assert_eq!(status, 1);
-    let worst = json["worst"].as_array().unwrap();
-    assert_eq!(worst.len(), 3);
-    let (w, h, pixels) = read_ppm(&student);
-    for entry in worst {
-        let (x, y) = (entry["x"].as_u64().unwrap(), entry["y"].as_u64().unwrap());
-        let command = entry["trace"].as_str().unwrap();
-        let expected = format!(
-            "legacy-rt trace {x} {y} {w} {h} --stage diffuse < {}",
-            scene.display()
-        );
-        assert_eq!(command, expected);
-        // The student's bytes are those of the file at (x, y) from the lower left.
-        let at = (h - 1 - y as usize) * w + x as usize;
-        let student_bytes: Vec<u8> = pixels[at].to_vec();
-        assert_eq!(entry["student"], serde_json::json!(student_bytes));
-        // Run the command as printed: its last line is the reference's bytes.
-        let words: Vec<&str> = command
-            .split(" < ")
-            .next()
-            .unwrap()
-            .split(' ')
-            .skip(1)
-            .collect();
-        let output = run(&words, &std::fs::read(&scene).unwrap());
-        let trace = stdout(&output);
-        let bytes = trace
-            .lines()
-            .last()
-            .unwrap()
-            .strip_prefix("bytes: ")
-            .unwrap();
-        let bytes: Vec<u64> = bytes.split(' ').map(|b| b.parse().unwrap()).collect();
-        assert_eq!(entry["reference"], serde_json::json!(bytes), "{command}");
+    let cases: [Case; 2] = [
+        (
+            "note003_records",
+            &["--stage", "diffuse"],
+            &["--stage", "diffuse", "--variant", "facing-normals"],
+            " --stage diffuse",
+            false,
+        ),
+        (
+            "shadows",
+            &["--variant", "upside-down"],
+            &["--variant", "upside-down,square-falloff"],
+            " --variant upside-down",
+            true,
+        ),
+    ];
+    let dir = folder("worst");
+    for (name, given, mistaken, flags, mirrored) in cases {
+        let scene = example(name);
+        let student = dir.join(format!("{name}.ppm"));
+        render(&scene, (64, 48), mistaken, &student);
+        let mut args: Vec<&str> = given.to_vec();
+        args.extend([
+            "--worst",
+            "3",
+            scene.to_str().unwrap(),
+            student.to_str().unwrap(),
+        ]);
+        let (status, json) = report(&args);
+        assert_eq!(status, 1);
+        let worst = json["worst"].as_array().unwrap();
+        assert_eq!(worst.len(), 3);
+        let (w, h, pixels) = read_ppm(&student);
+        for entry in worst {
+            let (x, y) = (entry["x"].as_u64().unwrap(), entry["y"].as_u64().unwrap());
+            let command = entry["trace"].as_str().unwrap();
+            let traced = if mirrored { h as u64 - 1 - y } else { y };
+            let expected = format!(
+                "legacy-rt trace {x} {traced} {w} {h}{flags} < {}",
+                scene.display()
+            );
+            assert_eq!(command, expected);
+            // The student's bytes are those of the file at (x, y) from the lower left.
+            let at = (h - 1 - y as usize) * w + x as usize;
+            let student_bytes: Vec<u8> = pixels[at].to_vec();
+            assert_eq!(entry["student"], serde_json::json!(student_bytes));
+            // Run the command as printed: its last line is the reference's bytes.
+            let words: Vec<&str> = command
+                .split(" < ")
+                .next()
+                .unwrap()
+                .split(' ')
+                .skip(1)
+                .collect();
+            let output = run(&words, &std::fs::read(&scene).unwrap());
+            let trace = stdout(&output);
+            let bytes = trace
+                .lines()
+                .last()
+                .unwrap()
+                .strip_prefix("bytes: ")
+                .unwrap();
+            let bytes: Vec<u64> = bytes.split(' ').map(|b| b.parse().unwrap()).collect();
+            assert_eq!(entry["reference"], serde_json::json!(bytes), "{command}");
+        }
     }
 }
 
@@ -915,4 +939,38 @@ fn a_mistake_of_the_whole_image_is_not_pinned_on_one_object() {
         let text = stdout(&compare(&args));
         assert!(!text.contains("your image agrees"), "{name}: {text}");
     }
+}
+
+#[test]
+fn max_dist_s_paths_on_a_sample_are_those_of_the_whole_image() {
+    // compare --diagnose reads MAX_DIST off a sample's paths before it renders every
+    // pixel's: on the sample they must be the whole render's, pixel by pixel.
+    let text = std::fs::read_to_string(example("mirrors")).unwrap();
+    let scene = legacy_rt::load(&text).unwrap();
+    let options = legacy_rt::Options {
+        max_dist: 1000.0,
+        ..legacy_rt::Options::new(64, 48)
+    };
+    // Any rule on the bytes will do: it only has to tell some apart.
+    let agrees = |bytes: [u8; 3]| bytes[0] > 100;
+    let (state, changes) =
+        legacy_rt::render::path_agreement(&scene, &options, |_, bytes| agrees(bytes));
+    let sample: Vec<usize> = (0..64 * 48).step_by(7).collect();
+    let (state_at, changes_at) =
+        legacy_rt::render::path_agreement_at(&scene, &options, &sample, |_, bytes| agrees(bytes));
+    assert!(
+        changes.len() > 100,
+        "the scene's mirrors change bytes as D grows"
+    );
+    let expected: Vec<bool> = sample.iter().map(|&i| state[i]).collect();
+    assert_eq!(state_at, expected);
+    let on_sample = |i: u32| sample.binary_search(&(i as usize)).is_ok();
+    let expected: Vec<_> = changes.iter().filter(|c| on_sample(c.pixel)).collect();
+    let got: Vec<_> = (changes_at.iter())
+        .map(|c| legacy_rt::render::PathChange {
+            pixel: sample[c.pixel as usize] as u32,
+            ..*c
+        })
+        .collect();
+    assert_eq!(got.iter().collect::<Vec<_>>(), expected);
 }

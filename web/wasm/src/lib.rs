@@ -412,13 +412,9 @@ impl Session {
         let with_scene = Some((scene, &options));
         let mut report =
             compare::report(&reference, &student, with_scene, &settings).map_err(thrown)?;
-        let command = |x, y| compare::text::trace_command(&chosen, &options, scene_name, x, y);
-        for worst in &mut report.worst {
-            worst.trace = Some(command(worst.x, worst.y));
-        }
-        for found in report.diagnosis.iter_mut().flatten() {
-            found.trace = found.pixel.map(|[x, y]| command(x, y));
-        }
+        report.add_trace_commands(|x, y| {
+            compare::text::trace_command(&chosen, &options, scene_name, x, y)
+        });
         let text = compare::text::text(&report, scene_name, &name, Some(&chosen));
         let diff = compare::diff_image(&reference, &student, levels).map_err(thrown)?;
         Ok(Comparison {
