@@ -2,10 +2,12 @@
 //! (spec §7.5), alone and two together, are each named, whole-image ones first, and
 //! nothing else is claimed. The whole-image mistakes are made here from the reference's
 //! bytes (a row down, a column right, every byte +3, the channels swapped), not by the
-//! renderer's variants; a user's edits are made in the scene's text.
+//! renderer's variants; a user's edits are made in the scene's text; and a tiny tracer
+//! written in the tests (spec §4-§5) makes the mistakes of spec §7.5 as a student's
+//! program would.
 
 use super::common::folder;
-use super::compare::{course, example, read_ppm, render, report};
+use super::compare::{Mistakes, course, example, read_ppm, render, report, tiny_tracer};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 
@@ -341,5 +343,60 @@ fn each_mistake_of_spec_7_5_is_named_first_on_three_scenes() {
     for (scene, line) in stopped {
         let id = format!("stopped-at@{line}");
         run(&id, &id, &scene);
+    }
+}
+
+#[test]
+fn an_independent_tracer_s_mistakes_are_each_named() {
+    // The tiny tracer of tests/integration/compare.rs (spec §4-§5, not the program's code)
+    // makes the mistakes of spec §7.5 as a student's program would, alone and two
+    // together; a reader that stopped is the scene's text cut at a record's line.
+    let dir = folder("causes-tiny");
+    let scene = example("shadows");
+    let text = std::fs::read_to_string(&scene).unwrap();
+    // The text up to (not including) line `line`: a reader that stopped there.
+    let until = |line: usize| -> String {
+        let lines: Vec<&str> = text.lines().take(line - 1).collect();
+        lines.join("\n") + "\n"
+    };
+    let row = Mistakes {
+        row_offset: 1,
+        ..Mistakes::default()
+    };
+    let jitter = Mistakes {
+        jitter: Some(3),
+        ..Mistakes::default()
+    };
+    let cases: Vec<(&str, String, Mistakes, Vec<&str>)> = vec![
+        ("row", text.clone(), row, vec!["row-offset=1"]),
+        ("jitter", text.clone(), jitter, vec!["jitter"]),
+        (
+            "stopped",
+            until(25),
+            Mistakes::default(),
+            vec!["stopped-at@25"],
+        ),
+        (
+            "row-stopped",
+            until(25),
+            row,
+            vec!["row-offset=1", "stopped-at@25"],
+        ),
+        (
+            "jitter-no-shadow",
+            text.clone(),
+            Mistakes {
+                no_shadow: Some(3),
+                ..jitter
+            },
+            vec!["jitter", "no-shadow@25"],
+        ),
+    ];
+    for (name, read, mistakes, expected) in cases {
+        let student = dir.join(format!("{name}.ppm"));
+        let size = (SIZE.0 as usize, SIZE.1 as usize);
+        write_ppm(&student, size, &tiny_tracer(&read, size, mistakes));
+        let (found, json) = causes(&scene, &student);
+        assert_eq!(found, expected, "{name}: {json:#}");
     }
 }

@@ -752,11 +752,22 @@ fn an_edit_of_one_record_is_diagnosed_as_itself() {
     }
 }
 
+/// The mistakes the tiny tracer can make, as students' programs made them (spec §7.5).
+#[derive(Debug, Clone, Copy, Default)]
+pub(super) struct Mistakes {
+    /// An object (its index) left out of the shadow rays.
+    pub no_shadow: Option<usize>,
+    /// Output row r holds the pixel traced at y = H-1-r+N (`rows - y` for N = 1).
+    pub row_offset: usize,
+    /// Each camera ray through a point drawn within half a pixel of the pixel's, from
+    /// this seed (the tracer's own generator, not the program's).
+    pub jitter: Option<u64>,
+}
+
 /// A tiny tracer of spec §4 and §5.1-§5.2, written here for spheres, planes and point
 /// lights without mirrors, independent of the program: the scene `text` at (w, h), with
-/// `no_shadow` (an object's index) left out of the shadow rays, as a student's program
-/// that forgot it would. Returns the pixels, top row first.
-fn tiny_tracer(text: &str, (w, h): (usize, usize), no_shadow: usize) -> Vec<[u8; 3]> {
+/// `mistakes`. Returns the pixels, top row first.
+pub(super) fn tiny_tracer(text: &str, (w, h): (usize, usize), mistakes: Mistakes) -> Vec<[u8; 3]> {
     type V = [f64; 3];
     let sub = |a: V, b: V| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
     let dot = |a: V, b: V| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
@@ -828,11 +839,24 @@ fn tiny_tracer(text: &str, (w, h): (usize, usize), no_shadow: usize) -> Vec<[u8;
         (t > 0.0).then_some(t)
     };
     let mut pixels = vec![[0u8; 3]; w * h];
-    for y in 0..h {
+    // xorshift64*, a number in [0, 1) each call.
+    let mut state = mistakes.jitter.map_or(1, |seed| seed.max(1));
+    let mut random = || {
+        state ^= state >> 12;
+        state ^= state << 25;
+        state ^= state >> 27;
+        (state.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 53) as f64
+    };
+    for r in 0..h {
+        let y = (h - 1 - r + mistakes.row_offset) as f64;
         for x in 0..w {
+            let (dx, dy) = match mistakes.jitter {
+                Some(_) => (random() - 0.5, random() - 0.5),
+                None => (0.0, 0.0),
+            };
             let p = [
-                x as f64 / (w - 1) as f64 * window[0] - window[0] / 2.0,
-                y as f64 / (h - 1) as f64 * window[1] - window[1] / 2.0,
+                (x as f64 + dx) / (w - 1) as f64 * window[0] - window[0] / 2.0,
+                (y + dy) / (h - 1) as f64 * window[1] - window[1] / 2.0,
                 0.0,
             ];
             let d = unit(sub(p, eye));
@@ -861,7 +885,7 @@ fn tiny_tracer(text: &str, (w, h): (usize, usize), no_shadow: usize) -> Vec<[u8;
                     continue;
                 }
                 let blocked = (objects.iter().enumerate())
-                    .filter(|&(j, _)| j != i && j != no_shadow)
+                    .filter(|&(j, _)| j != i && Some(j) != mistakes.no_shadow)
                     .any(|(_, o)| hit(&o.2, point, u).is_some_and(|s| s < dist));
                 if !blocked {
                     for c in 0..3 {
@@ -870,7 +894,7 @@ fn tiny_tracer(text: &str, (w, h): (usize, usize), no_shadow: usize) -> Vec<[u8;
                 }
             }
             let byte = |c: f64| (c / t).clamp(0.0, 1.0) * 255.0;
-            pixels[(h - 1 - y) * w + x] = colour.map(|c| byte(c) as u8);
+            pixels[r * w + x] = colour.map(|c| byte(c) as u8);
         }
     }
     pixels
@@ -884,12 +908,20 @@ fn a_student_s_own_shadow_mistake_is_localised_to_the_object() {
     let size = (160, 120);
     // Unbroken, the tiny tracer draws the reference: it is a correct tracer.
     let student = dir.join("correct.ppm");
-    write_ppm(&student, size, &tiny_tracer(&text, size, usize::MAX));
+    write_ppm(
+        &student,
+        size,
+        &tiny_tracer(&text, size, Mistakes::default()),
+    );
     let (status, json) = report(&[scene.to_str().unwrap(), student.to_str().unwrap()]);
     assert_eq!(status, 0, "{json}");
     // Its small white sphere (the fourth record, line 25) casts no shadow.
     let student = dir.join("student.ppm");
-    write_ppm(&student, size, &tiny_tracer(&text, size, 3));
+    let mistakes = Mistakes {
+        no_shadow: Some(3),
+        ..Mistakes::default()
+    };
+    write_ppm(&student, size, &tiny_tracer(&text, size, mistakes));
     let args = [
         "--diagnose",
         scene.to_str().unwrap(),
