@@ -197,12 +197,12 @@ fn object_sizes() -> String {
     use legacy_rt::shapes::*;
     use std::mem::size_of;
     let boxed = size_of::<Box<Sphere>>();
-    let matrix = size_of::<glam::DMat3>();
+    let matrix = size_of::<FrameRows>();
     let kinds = [
         ("sphere (13, 19)", size_of::<Sphere>(), 0),
         ("plane (14, 20)", size_of::<Plane>(), 0),
         (
-            "tiled plane (16), its matrix boxed",
+            "tiled plane (16), its rows boxed",
             size_of::<PlaneFrame>(),
             matrix,
         ),

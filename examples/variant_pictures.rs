@@ -31,6 +31,7 @@ fn scene_for(variant: Variant) -> &'static str {
         }
         "max-dist" => "examples/mirrors.txt",
         "behind-root" => "examples/tube.txt",
+        "tile-unprojected" => "../shared/course-scenes/d03.txt",
         "z-tolerance" | "far-clip" => "../shared/course-scenes/spec1.txt",
         _ => "../shared/course-scenes/a04.txt",
     }

@@ -48,6 +48,8 @@ pub enum Kinds {
     Planes,
     /// Tiled planes (16).
     TiledPlanes,
+    /// The planes with a frame: finite, tiled and textured (15-17).
+    FramedPlanes,
     /// The quadrics 21-24, whose roots are chosen within bounds.
     BoundedQuadrics,
 }
@@ -60,6 +62,7 @@ impl Kinds {
             Kinds::Cones => matches!(shape, Shape::Cone(_)),
             Kinds::Planes => shape.plane().is_some(),
             Kinds::TiledPlanes => matches!(shape, Shape::TiledPlane(_)),
+            Kinds::FramedPlanes => matches!(shape, Shape::TiledPlane(_) | Shape::FinitePlane(_)),
             Kinds::BoundedQuadrics => shape.axis_frame().is_some(),
         }
     }
@@ -71,6 +74,7 @@ impl Kinds {
             Kinds::Cones => "cones (23)",
             Kinds::Planes => "plane-based objects (14-17, 20)",
             Kinds::TiledPlanes => "tiled planes (16)",
+            Kinds::FramedPlanes => "finite, tiled and textured planes (15-17)",
             Kinds::BoundedQuadrics => "quadrics 21-24",
         }
     }
@@ -155,7 +159,7 @@ macro_rules! variants {
     };
 }
 
-use Kinds::{Any, BoundedQuadrics, Cones, Planes, TiledPlanes};
+use Kinds::{Any, BoundedQuadrics, Cones, FramedPlanes, Planes, TiledPlanes};
 use Scope::{Image, ImageOrLight, ImageOrObject, Light, Object, Record};
 
 variants! {
@@ -239,6 +243,11 @@ variants! {
     FarClip: "far-clip", Hits, Image, Parameter::Required("D", 32.0), "far clip",
         "§4.6 any t > 0 counts",
         "a hit farther than D from the ray's base is a miss (a closest-hit search that starts from mindist = D)";
+    /// §5.3/§5.4 (§7.5): the frame's x is unit(xdir) as given, not projected into the
+    /// plane, on every framed plane or one.
+    TileUnprojected: "tile-unprojected", Scene, ImageOrObject(FramedPlanes), Parameter::None, "frame",
+        "§5.3/§5.4 x projected into the plane",
+        "x = unit(xdir) used as given: where it leaves the plane, (q.x, q.y) shrink by the length of x - (n·x)n, so the rectangle and the tiles grow";
     /// §2.3 (§7.5): the records from LINE on are not loaded.
     StoppedAt: "stopped-at", Scene, Record, Parameter::None, "stopped",
         "§2.3 records to the end of the file",
@@ -973,6 +982,7 @@ impl Rules {
                 | Kind::NearerRoot
                 | Kind::BehindRoot
                 | Kind::ZTolerance
+                | Kind::TileUnprojected
                 | Kind::StoppedAt
                 | Kind::MaxDist
                 | Kind::Textbook
@@ -1069,6 +1079,11 @@ impl Rules {
                     Kind::BehindRoot => {
                         if let Some(quadric) = object.shape.bounded_axis_quadric_mut() {
                             quadric.smaller_root_even_behind();
+                        }
+                    }
+                    Kind::TileUnprojected => {
+                        if let Some(frame) = object.shape.frame_mut() {
+                            frame.unproject();
                         }
                     }
                     _ => {}

@@ -95,13 +95,13 @@ impl Dump {
             Shape::FinitePlane(s) => {
                 self.vector("normal", s.frame.plane.normal);
                 self.vector("point", s.frame.plane.point);
-                self.matrix("frame", *s.frame.local_from_world);
+                self.matrix("frame", s.frame.local_from_world.rot);
                 self.row("size", &s.size.to_array());
             }
             Shape::TiledPlane(s) => {
                 self.vector("normal", s.plane.normal);
                 self.vector("point", s.plane.point);
-                self.matrix("frame", *s.local_from_world);
+                self.matrix("frame", s.local_from_world.rot);
             }
             Shape::Paraboloid(s) => {
                 self.axis("vertex", &s.equation.frame);

@@ -43,8 +43,7 @@ impl FinitePlane {
     /// The box around the rectangle's four corners.
     pub fn bounds(&self) -> (DVec3, DVec3) {
         let origin = self.frame.plane.point;
-        let x = self.frame.local_from_world.row(0) * self.size.x;
-        let y = self.frame.local_from_world.row(1) * self.size.y;
+        let (x, y) = self.frame.edges(self.size);
         let corners = [origin, origin + x, origin + y, origin + x + y];
         let min = corners.into_iter().fold(DVec3::INFINITY, DVec3::min);
         let max = corners.into_iter().fold(DVec3::NEG_INFINITY, DVec3::max);

@@ -30,7 +30,7 @@ pub use finite_plane::FinitePlane;
 pub use hyperboloid::Hyperboloid;
 pub use paraboloid::Paraboloid;
 pub use plane::Plane;
-pub use plane_frame::PlaneFrame;
+pub use plane_frame::{FrameRows, PlaneFrame};
 pub use quadric::Quadric;
 pub use sphere::Sphere;
 
@@ -264,7 +264,7 @@ pub struct Surface {
 ///
 /// An enum is as large as its largest variant, so only the shapes a scene may hold by the
 /// thousand are held in place: the sphere (40 bytes), the plane (56) and the tiled plane
-/// (64, its frame's matrix boxed). Every other shape is boxed (80-408 bytes). A shape
+/// (64, its frame's rows boxed). Every other shape is boxed (80-408 bytes). A shape
 /// takes 72 bytes, not the 152 that the finite plane would make it.
 #[derive(Debug, Clone, PartialEq)]
 // A tag of its own: left to itself the compiler hides the kind in a spare value of a
@@ -371,6 +371,16 @@ impl Shape {
 
     /// The plane of a plane-based shape (14-17, 20), to drop its z rule (the variant
     /// no-z-rule).
+    /// The frame of a finite, textured or tiled plane (15-17, spec §5.3), `None` for the
+    /// other shapes.
+    pub(crate) fn frame_mut(&mut self) -> Option<&mut PlaneFrame> {
+        match self {
+            Shape::FinitePlane(s) => Some(&mut s.frame),
+            Shape::TiledPlane(s) => Some(s),
+            _ => None,
+        }
+    }
+
     pub(crate) fn plane_mut(&mut self) -> Option<&mut Plane> {
         match self {
             Shape::Plane(s) => Some(s),

@@ -11,10 +11,24 @@ use glam::{DMat3, DVec2, DVec3};
 pub struct PlaneFrame {
     /// The plane (unit normal, point = the frame's origin, the lower-left corner).
     pub plane: Plane,
-    /// Rows: unit x direction in the plane, n × x, n. Boxed: a hit test reads only the
-    /// plane, and the tiled plane's frame then takes 64 bytes in place, 8 more than a
-    /// plane (boxing the whole frame instead cost spec1 1.6 % more instructions).
-    pub local_from_world: Box<DMat3>,
+    /// Rows: unit x direction in the plane, n × x, n; and what the x direction's
+    /// projection kept. Boxed: a hit test reads only the plane, and the tiled plane's
+    /// frame then takes 64 bytes in place, 8 more than a plane (boxing the whole frame
+    /// instead cost spec1 1.6 % more instructions).
+    pub local_from_world: Box<FrameRows>,
+}
+
+/// The rows of a plane frame's rotation, and the length that projecting the unit x
+/// direction into the plane left it (spec §5.3): the scale of the frame a program gets
+/// that uses unit(xdir) as given (`tile-unprojected`, spec §7.5).
+#[derive(Debug, Clone, PartialEq)]
+pub struct FrameRows {
+    /// Rows: x, n × x, n (under tile-unprojected the first two times `in_plane`).
+    pub rot: DMat3,
+    /// |x - (n·x) n| for x = unit(xdir): 1 where the x direction lies in the plane.
+    pub in_plane: f64,
+    /// Whether the first two rows are scaled by `in_plane` (tile-unprojected).
+    pub unprojected: bool,
 }
 
 impl PlaneFrame {
@@ -39,18 +53,50 @@ impl PlaneFrame {
         if in_plane.length() < 1e-12 {
             return Err(parallel);
         }
+        let length = in_plane.length();
         let x = unit(in_plane).ok_or(parallel)?;
         let rot = DMat3::from_cols(x, n.cross(x), n).transpose();
         Ok(PlaneFrame {
             plane,
-            local_from_world: Box::new(rot),
+            local_from_world: Box::new(FrameRows {
+                rot,
+                in_plane: length,
+                unprojected: false,
+            }),
         })
     }
 
     /// (q.x, q.y) of a point of the plane.
     #[inline]
     pub fn plane_xy(&self, point: DVec3) -> DVec2 {
-        (*self.local_from_world * (point - self.plane.point)).truncate()
+        (self.local_from_world.rot * (point - self.plane.point)).truncate()
+    }
+
+    /// The frame of unit(xdir) used as given, not projected into the plane
+    /// (`tile-unprojected`, spec §7.5): x·d = (x - (n·x) n)·d for d in the plane, so
+    /// (q.x, q.y) are the projected frame's times |x - (n·x) n|.
+    pub fn unproject(&mut self) {
+        let rows = &mut *self.local_from_world;
+        if !rows.unprojected {
+            let [x, y, n] = [0, 1, 2].map(|k| rows.rot.row(k));
+            let k = rows.in_plane;
+            rows.rot = DMat3::from_cols(x * k, y * k, n).transpose();
+            rows.unprojected = true;
+        }
+    }
+
+    /// The world vectors from the origin along q.x and q.y by `size`: the rows times
+    /// the size, or over the square of their scale when unprojected.
+    pub fn edges(&self, size: DVec2) -> (DVec3, DVec3) {
+        let rows = &*self.local_from_world;
+        let [x, y] = [0, 1].map(|k| rows.rot.row(k));
+        match rows.unprojected {
+            false => (x * size.x, y * size.y),
+            true => {
+                let k2 = rows.in_plane * rows.in_plane;
+                (x * (size.x / k2), y * (size.y / k2))
+            }
+        }
     }
 }
 

@@ -284,6 +284,8 @@ fn tubes(dir: &Path) -> Vec<PathBuf> {
 fn each_mistake_of_spec_7_5_is_named_first_on_three_scenes() {
     let dir = folder("causes-7-5");
     let (spec1, a04, d06) = (course("spec1"), course("a04"), course("d06"));
+    // The course's framed planes whose x direction leaves their plane.
+    let framed: Vec<PathBuf> = ["d03", "d05", "d06"].into_iter().flat_map(course).collect();
     let shadows = example("shadows");
     let (tube, mirrors) = (example("tube"), example("mirrors"));
     let three = |extra: Option<PathBuf>| {
@@ -323,6 +325,7 @@ fn each_mistake_of_spec_7_5_is_named_first_on_three_scenes() {
                 .chain(d06)
                 .collect(),
         ),
+        ("tile-unprojected".into(), "tile-unprojected", framed),
     ];
     let stopped = [(tube.clone(), 19), (shadows.clone(), 18)]
         .into_iter()

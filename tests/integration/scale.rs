@@ -23,7 +23,7 @@ fn scale_shape(shape: &Shape, s: f64) -> Shape {
                 FinitePlane::new(
                     f.plane.normal,
                     f.plane.point * s,
-                    f.local_from_world.row(0),
+                    f.local_from_world.rot.row(0),
                     x.size * s,
                     "f",
                 )
@@ -34,7 +34,7 @@ fn scale_shape(shape: &Shape, s: f64) -> Shape {
             PlaneFrame::new(
                 f.plane.normal,
                 f.plane.point * s,
-                f.local_from_world.row(0),
+                f.local_from_world.rot.row(0),
                 "t",
             )
             .unwrap(),

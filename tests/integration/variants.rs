@@ -551,3 +551,36 @@ fn stopped_at_drops_that_record_and_every_later_one() {
     assert_eq!(red(&stopped(9), 2, 1), 159);
     assert!(stopped(3).pixels.iter().all(|p| *p == [0, 0, 0]));
 }
+
+#[test]
+fn tile_unprojected_takes_the_x_direction_as_given() {
+    // A 1 x 1 finite plane in z = -5 from (-1, -1, -5), x direction (1, 0, 1): projected
+    // into the plane, x = (1, 0, 0) and the rectangle spans x, y in [-1, 0]. Used as
+    // given, x = (1, 0, 1)/√2, so q.x = (H - point)·x = d_x/√2 (and q.y = d_y/√2): the
+    // rectangle spans [-1, -1 + √2] = [-1, 0.414] each way.
+    let scene = "8 6\n0 0 3\n15\n1 1 1\n0 0 0\n0 0 0\n0 0 1\n-1 -1 -5\n1 0 1\n1 1\n";
+    let scene = legacy_rt::load(scene).unwrap();
+    let options = Options::new(4, 3);
+    let unprojected = (options.with_variant(Variant::of(Kind::TileUnprojected))).unwrap();
+    let eye = DVec3::new(0.0, 0.0, 3.0);
+    let towards = |x: f64, y: f64| Ray::new(eye, (DVec3::new(x, y, -5.0) - eye).normalize());
+    // (-0.5, -0.5): inside both; (0.3, 0.3): only the unprojected one; (0.5, 0.5): neither.
+    for ((x, y), (as_written, as_given)) in [
+        ((-0.5, -0.5), (true, true)),
+        ((0.3, 0.3), (false, true)),
+        ((0.5, 0.5), (false, false)),
+    ] {
+        let lit = |options: &Options| render::ray_trace(&scene, options, towards(x, y)).x > 0.0;
+        assert_eq!(lit(&options), as_written, "({x}, {y}) as written");
+        assert_eq!(lit(&unprojected), as_given, "({x}, {y}) unprojected");
+    }
+    // The same record with its x direction in the plane: nothing changes.
+    let flat = "8 6\n0 0 3\n15\n1 1 1\n0 0 0\n0 0 0\n0 0 1\n-1 -1 -5\n2 0 0\n1 1\n";
+    let flat = legacy_rt::load(flat).unwrap();
+    let plain = Options::new(40, 30);
+    let given = plain
+        .with_variant(Variant::of(Kind::TileUnprojected))
+        .unwrap();
+    let image = |options: &Options| render::render(&flat, options, |_| {}).pixels;
+    assert_eq!(image(&plain), image(&given));
+}
