@@ -1,11 +1,12 @@
 //! `compare --diagnose`'s causes: what the pixels support, in order, each with the count
 //! of the differing pixels it explains and of the agreeing ones it would break.
 //!
-//! Whole-image causes come first, since they hide everything else: every byte some
-//! levels off or the channels in another order (found from the two images alone), then
-//! the catalogue's variants (a row or column off, the image upside down, a scene rule:
-//! [`super::diagnose`]), and where none explains nearly all, jittered camera rays (each
-//! differing pixel against what the reference takes anywhere inside its pixel). Each
+//! Whole-image causes come first, since they hide everything else: a square image's axes
+//! swapped, every byte some levels off or the channels in another order (found from the
+//! two images alone), then the catalogue's variants (a row or column off, the image
+//! upside down, a scene rule: [`super::diagnose`]), and where none explains nearly all,
+//! jittered camera rays (each differing pixel against what the reference takes anywhere
+//! inside its pixel). Each
 //! cause found is undone and what remains is diagnosed again. A cause is stated only if
 //! it explains at least half of the differing pixels left and breaks almost none
 //! ([`supported`]); otherwise the report says no cause explains them.
@@ -21,7 +22,8 @@ use serde::Serialize;
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Cause {
     /// What it is: the variants that render it, as `--variant` takes them
-    /// (`row-offset=1`, `behind-root@12`), or `bytes+3`, `channels=bgr`, `jitter`.
+    /// (`row-offset=1`, `behind-root@12`), or `axes-swapped`, `bytes+3`, `channels=bgr`,
+    /// `jitter`.
     pub id: String,
     /// The variants, where it is the catalogue's (in JSON their ids).
     pub variants: Vec<Variant>,
@@ -77,15 +79,29 @@ pub fn explain(
     if mask.1 == 0 {
         return (Vec::new(), None, causes);
     }
-    // 1. The bytes of the whole image: undone before anything else is looked at.
-    let undone = bytes_cause(reference, student, levels, mask);
-    let (student, owned_mask) = match undone {
+    // 1. The axes swapped and the bytes of the whole image: undone before anything else
+    // is looked at.
+    let swapped = swapped_cause(reference, student, levels, mask);
+    let (student, mask_after_swap) = match swapped {
         Some((cause, image)) => {
             causes.push(cause);
             let mask = differing(reference, &image, levels);
             (std::borrow::Cow::Owned(image), Some(mask))
         }
         None => (std::borrow::Cow::Borrowed(student), None),
+    };
+    let mask = mask_after_swap.as_ref().map_or(mask, |(m, n)| (&m[..], *n));
+    if mask.1 == 0 {
+        return (Vec::new(), None, causes);
+    }
+    let undone = bytes_cause(reference, &student, levels, mask);
+    let (student, owned_mask) = match undone {
+        Some((cause, image)) => {
+            causes.push(cause);
+            let mask = differing(reference, &image, levels);
+            (std::borrow::Cow::Owned(image), Some(mask))
+        }
+        None => (student, None),
     };
     let mask = owned_mask.as_ref().map_or(mask, |(m, n)| (&m[..], *n));
     if mask.1 == 0 {
@@ -228,6 +244,75 @@ fn ids(variants: &[Variant]) -> String {
         .map(|v| v.id())
         .collect::<Vec<_>>()
         .join(",")
+}
+
+/// A square image's axes swapped (spec §7.5's x/y): the student's pixel at (x, y) is
+/// the reference's at (y, x), as a program that swaps its loops' indices writes it, or
+/// the file's rows and columns swapped (buf[x][y] for buf[y][x]). Checked on the
+/// differing pixels first, given up once more than [`NEARLY_ALL`] allows miss; the
+/// cause and the student's image with the axes swapped back.
+fn swapped_cause(
+    reference: &Image,
+    student: &Image,
+    levels: u8,
+    (mask, count): (&[u64], usize),
+) -> Option<(Cause, Image)> {
+    let n = reference.width;
+    if n != reference.height || n < 2 {
+        return None;
+    }
+    // Where the student's file pixel i comes from in the reference's, either way.
+    /// Pixel i of an n x n file to the reference's pixel it holds.
+    type Source = fn(usize, usize) -> usize;
+    let ways: [(&str, Source); 2] = [
+        // (x, y) from (y, x): file row r, column c is x = c, y = n-1-r; the reference's
+        // (n-1-r, c) is at row n-1-c, column n-1-r.
+        ("x and y", |i, n| (n - 1 - i % n) * n + (n - 1 - i / n)),
+        ("the file's rows and columns", |i, n| (i % n) * n + i / n),
+    ];
+    let may_miss = count - (NEARLY_ALL * count as f64).ceil() as usize;
+    let differs = |i: usize| mask[i / 64] >> (i % 64) & 1 == 1;
+    for (what, from) in ways {
+        let follows = |i: usize| within(reference.pixels[from(i, n)], student.pixels[i], levels);
+        let mut missed = 0;
+        let mut first = None;
+        for i in (0..n * n).filter(|&i| differs(i)) {
+            match follows(i) {
+                true => first = first.or(Some(i)),
+                false => missed += 1,
+            }
+            if missed > may_miss {
+                break;
+            }
+        }
+        if missed > may_miss {
+            continue;
+        }
+        let explains = count - missed;
+        let breaks = (0..n * n).filter(|&i| !differs(i) && !follows(i)).count();
+        if !supported(explains, count, breaks) {
+            continue;
+        }
+        let mut image = student.clone();
+        for i in 0..n * n {
+            image.pixels[from(i, n)] = student.pixels[i];
+        }
+        let cause = Cause {
+            id: "axes-swapped".into(),
+            variants: Vec::new(),
+            about: format!(
+                "{what} are swapped: each pixel holds the one across the image's diagonal"
+            ),
+            explains,
+            of: count,
+            breaks,
+            subject: None,
+            pixel: first.map(|i| super::pixel_at(i, n, n)),
+            trace: None,
+        };
+        return Some((cause, image));
+    }
+    None
 }
 
 /// The permutations of the channels other than RGB, by name, the most common mistake

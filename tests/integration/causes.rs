@@ -88,6 +88,42 @@ fn a_whole_image_mistake_made_from_the_bytes_is_named_and_nothing_else() {
 }
 
 #[test]
+fn a_square_image_with_its_axes_swapped_is_named_so() {
+    // A program that swaps x and y (its loops' indices, or its buffer's), on a square
+    // image: each pixel holds the one across the diagonal. Made here from the reference.
+    let dir = folder("causes-swapped");
+    let n = 120;
+    for scene in scenes() {
+        let reference = dir.join("reference.ppm");
+        render(&scene, (n as u32, n as u32), &[], &reference);
+        let (_, _, pixels) = read_ppm(&reference);
+        // (x, y) from (y, x) with y from the bottom; then the file's rows and columns.
+        let xy: Vec<[u8; 3]> = (0..n * n)
+            .map(|i| {
+                let (r, c) = (i / n, i % n);
+                let (x, y) = (c, n - 1 - r);
+                let (sx, sy) = (y, x);
+                pixels[(n - 1 - sy) * n + sx]
+            })
+            .collect();
+        let rows: Vec<[u8; 3]> = (0..n * n).map(|i| pixels[(i % n) * n + i / n]).collect();
+        for (what, image) in [("x and y", xy), ("the file's rows and columns", rows)] {
+            let student = dir.join("student.ppm");
+            write_ppm(&student, (n, n), &image);
+            let (found, json) = causes(&scene, &student);
+            assert_eq!(
+                found,
+                ["axes-swapped"],
+                "{} {what}: {json:#}",
+                scene.display()
+            );
+            let about = json["causes"][0]["about"].as_str().unwrap();
+            assert!(about.starts_with(what), "{about}");
+        }
+    }
+}
+
+#[test]
 fn jittered_rays_are_named_as_jitter_and_not_as_a_scene_mistake() {
     let dir = folder("causes-jitter");
     let mut scenes = vec![example("shadows"), example("tube")];
