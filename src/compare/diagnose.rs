@@ -278,15 +278,13 @@ pub(crate) fn with_mask(
         .filter_map(|&v| Some((vec![v], estimate_on(0, &[v])?.0)))
         .filter(|(_, agreement)| *agreement > before)
         .collect();
-    // A reader that stopped, tried at every record near the best of the stops tried.
-    let stops = first_round
-        .iter()
-        .filter(|(v, _)| v[0].kind == Kind::StoppedAt);
-    if let Some(line) = stops
-        .max_by(|a, b| a.1.total_cmp(&b.1))
-        .and_then(|(v, _)| v[0].line)
-    {
-        let near: Vec<Variant> = (stopped_near(scene, line).into_iter())
+    // More candidates near the best of a kind: each tried on the small sample, kept
+    // where it does better than the image as it is.
+    let try_near = |near: Vec<Variant>,
+                    first_round: &mut Vec<(Vec<Variant>, f64)>,
+                    candidates: &mut Vec<Variant>| {
+        let near: Vec<Variant> = near
+            .into_iter()
             .filter(|v| !candidates.contains(v))
             .collect();
         first_round.extend(
@@ -295,6 +293,49 @@ pub(crate) fn with_mask(
                 .filter(|(_, agreement)| *agreement > before),
         );
         candidates.extend(near);
+    };
+    // A reader that stopped, tried at every record near the best of the stops tried.
+    let stops = first_round
+        .iter()
+        .filter(|(v, _)| v[0].kind == Kind::StoppedAt);
+    if let Some(line) = stops
+        .max_by(|a, b| a.1.total_cmp(&b.1))
+        .and_then(|(v, _)| v[0].line)
+    {
+        try_near(stopped_near(scene, line), &mut first_round, &mut candidates);
+    }
+    // A continuous parameter (far-clip=D, z-tolerance=E) is tried at a few round values
+    // first; where the best of them does better than the image as it is, the round
+    // values between its neighbours are tried too, the roundest first, so that among
+    // equals the one a student would write is kept (30, not 29.7). Values on either side
+    // of the student's may agree alike (each gets part of the pixels right): the range
+    // searched spans every value that ties with the best.
+    for kind in [Kind::FarClip, Kind::ZTolerance] {
+        let of_kind = |v: &Variant| v.kind == kind && v.line.is_none();
+        let tried: Vec<(f64, f64)> = (first_round.iter())
+            .filter(|(v, _)| v.len() == 1 && of_kind(&v[0]))
+            .filter_map(|(v, agreement)| Some((v[0].value?, *agreement)))
+            .collect();
+        let Some(best) = tried.iter().map(|t| t.1).reduce(f64::max) else {
+            continue;
+        };
+        let tied = || tried.iter().filter(|t| t.1 == best).map(|t| t.0);
+        let (first, last) = (tied().fold(f64::MAX, f64::min), tied().fold(0.0, f64::max));
+        let mut values: Vec<f64> = (candidates.iter())
+            .filter(|v| of_kind(v))
+            .filter_map(|v| v.value)
+            .collect();
+        values.sort_by(f64::total_cmp);
+        let below = values.iter().rev().find(|&&v| v < first).copied();
+        let above = values.iter().find(|&&v| v > last).copied();
+        let (low, high) = (below.unwrap_or(first / 2.0), above.unwrap_or(last * 2.0));
+        let near = (round_values_between(low, high).into_iter())
+            .map(|value| Variant {
+                value: Some(value),
+                ..Variant::of(kind)
+            })
+            .collect();
+        try_near(near, &mut first_round, &mut candidates);
     }
     shortlist(&mut first_round);
     let mut estimated: Vec<Tried> = (first_round.into_iter())
@@ -748,6 +789,39 @@ fn other_values() -> Vec<Variant> {
     out
 }
 
+/// The round numbers strictly between `low` and `high` (0 < low < high), the roundest
+/// first: the multiples of the largest power of ten that fits, then of its half, then
+/// of a tenth of it; at most [`ROUND_VALUES`]. Each is a decimal as written (0.15, not
+/// 0.15000000000000002).
+fn round_values_between(low: f64, high: f64) -> Vec<f64> {
+    let mut out: Vec<f64> = Vec::new();
+    let exponent = (high - low).log10().floor() as i32;
+    for (e, half) in [(exponent, false), (exponent, true), (exponent - 1, false)] {
+        // k / 10^-e (or k * 10^e): a division by a whole power of ten rounds once.
+        let (scale, divide) = (10f64.powi(e.abs()), e < 0);
+        let step_in_units = if half { 0.5 } else { 1.0 };
+        let at = |k: f64| match divide {
+            true => k * step_in_units / scale,
+            false => k * step_in_units * scale,
+        };
+        let mut k = (if divide { low * scale } else { low / scale } / step_in_units).floor();
+        while out.len() < ROUND_VALUES {
+            let value = at(k);
+            if value >= high {
+                break;
+            }
+            if value > low && !out.contains(&value) {
+                out.push(value);
+            }
+            k += 1.0;
+        }
+    }
+    out
+}
+
+/// How many round values a continuous parameter is tried at between two of its first.
+const ROUND_VALUES: usize = 32;
+
 /// How many records' lines a reader that stopped is tried at.
 const STOPS: usize = 32;
 
@@ -1100,6 +1174,23 @@ mod tests {
                 assert_eq!(counts.fixed, fixed, "{name} {}", ids.join(","));
             }
         }
+    }
+
+    #[test]
+    fn round_values_come_roundest_first_and_as_written() {
+        // Between 20 and 50: the tens, the fives, then the ones.
+        let values = round_values_between(20.0, 50.0);
+        assert_eq!(values[..5], [30.0, 40.0, 25.0, 35.0, 45.0]);
+        assert_eq!(values[5..8], [21.0, 22.0, 23.0]);
+        assert_eq!(values.len(), 2 + 3 + 24);
+        // Between 0.05 and 0.2: 0.1, 0.15, then the hundredths, each printed as written.
+        let values = round_values_between(0.05, 0.2);
+        assert_eq!(values[..3], [0.1, 0.15, 0.06]);
+        assert_eq!(round_values_between(100.0, 1000.0).len(), ROUND_VALUES);
+        let printed: Vec<String> = values.iter().map(|v| v.to_string()).collect();
+        assert!(printed.iter().all(|p| p.len() <= 4), "{printed:?}");
+        assert_eq!(values.len(), 2 + 12);
+        assert!(values.iter().all(|&v| v > 0.05 && v < 0.2));
     }
 
     #[test]

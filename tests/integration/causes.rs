@@ -362,6 +362,24 @@ fn each_mistake_of_spec_7_5_is_named_first_on_three_scenes() {
                 .collect(),
         ),
         ("tile-unprojected".into(), "tile-unprojected", framed),
+        // Values between the round ones tried first: found between them.
+        (
+            "far-clip=30".into(),
+            "far-clip=30",
+            [mirrors.clone()]
+                .into_iter()
+                .chain(spec1.clone())
+                .chain(course("d06"))
+                .collect(),
+        ),
+        (
+            "z-tolerance=0.3".into(),
+            "z-tolerance=0.3",
+            [tube.clone(), mirrors.clone()]
+                .into_iter()
+                .chain(spec1.clone())
+                .collect(),
+        ),
     ];
     let stopped = [(tube.clone(), 19), (shadows.clone(), 18)]
         .into_iter()
