@@ -105,7 +105,32 @@ pub struct Focus {
     pub shadow: f64,
     /// See `camera`.
     pub mirror: f64,
+    /// The light whose term the differences follow, where one does.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub light: Option<LightFocus>,
 }
+
+/// A light whose term the differences follow: it lights nearly every (sampled) differing
+/// pixel and few of the agreeing ones, as when it is not where the scene puts it or its
+/// distance is computed otherwise.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct LightFocus {
+    /// "light (line 32)".
+    pub light: String,
+    /// Its index among the scene's lights.
+    pub index: usize,
+    /// The share of the sampled differing pixels it lights (0 to 1).
+    pub differing: f64,
+    /// The share of the sampled agreeing pixels it lights.
+    pub agreeing: f64,
+}
+
+/// The share of the differing pixels a light must light for the differences to follow
+/// it, at least.
+const LIGHT_DIFFERING: f64 = 0.9;
+
+/// The share of the agreeing pixels it may light, at most.
+const LIGHT_AGREEING: f64 = 0.5;
 
 /// What one candidate scored.
 #[derive(Clone)]
@@ -266,7 +291,8 @@ pub(crate) fn with_mask(
     };
     let (sample, split) = &samples[1];
     let paths = render::involved(scene, options, &sample[..*split]);
-    let focus = focus(scene, &paths);
+    let agreeing_paths = render::involved(scene, options, &sample[*split..]);
+    let focus = focus(scene, &paths, &agreeing_paths);
     let mut candidates: Vec<Variant> = (Variant::tried())
         .filter(|v| v.kernel() != Some(options.kernel))
         .collect();
@@ -917,7 +943,11 @@ fn distinct(of: impl Iterator<Item = usize>) -> Vec<usize> {
 /// The object most involved in the sampled differing pixels' paths, and how: each path
 /// counts once for an object, as the camera ray's hit first, else as a shadow's blocker,
 /// else as a mirror ray's hit.
-fn focus(scene: &Scene, paths: &[render::Involved]) -> Option<Focus> {
+fn focus(
+    scene: &Scene,
+    paths: &[render::Involved],
+    agreeing: &[render::Involved],
+) -> Option<Focus> {
     // Per object: the paths that involve it, then by the camera, a shadow, a mirror.
     let mut counts = vec![[0usize; 4]; scene.objects.len()];
     for path in paths {
@@ -949,7 +979,31 @@ fn focus(scene: &Scene, paths: &[render::Involved]) -> Option<Focus> {
         camera: share(camera),
         shadow: share(shadow),
         mirror: share(mirror),
+        light: light_focus(scene, paths, agreeing),
     })
+}
+
+/// The light that lights at least [`LIGHT_DIFFERING`] of the differing pixels' paths and
+/// at most [`LIGHT_AGREEING`] of the agreeing ones', the one whose two shares differ most.
+fn light_focus(
+    scene: &Scene,
+    differing: &[render::Involved],
+    agreeing: &[render::Involved],
+) -> Option<LightFocus> {
+    let lit = |paths: &[render::Involved], light: usize| {
+        let n = paths.iter().filter(|p| p.lit_by.contains(&light)).count();
+        n as f64 / paths.len().max(1) as f64
+    };
+    (0..scene.lights.len())
+        .map(|k| (k, lit(differing, k), lit(agreeing, k)))
+        .filter(|&(_, d, a)| d >= LIGHT_DIFFERING && a <= LIGHT_AGREEING)
+        .max_by(|x, y| (x.1 - x.2).total_cmp(&(y.1 - y.2)))
+        .map(|(index, differing, agreeing)| LightFocus {
+            light: format!("light (line {})", scene.lights[index].line),
+            index,
+            differing,
+            agreeing,
+        })
 }
 
 /// The MAX_DIST D under which the scene's image agrees best with `student`, the range of

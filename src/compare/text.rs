@@ -368,6 +368,16 @@ pub fn diagnosis(report: &Report) -> Vec<String> {
             percent_of(focus.share),
             parts.join(", ")
         ));
+        if let Some(light) = &focus.light {
+            line(format!(
+                "they follow the term of {}: it lights {} of the differing pixels and {} of \
+                 the agreeing ones; look at where your program puts it and how it computes \
+                 its distance and direction (spec §4.3)",
+                light.light,
+                percent_of(light.differing),
+                percent_of(light.agreeing)
+            ));
+        }
     }
     // The student's own program can say where it leaves the reference, number by
     // number: its DBG_ trace of a differing pixel, read with --against.

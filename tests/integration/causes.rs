@@ -210,7 +210,8 @@ fn edited(dir: &Path, scene: &Path, name: &str, from: &str, to: &str) -> PathBuf
 fn edits_made_by_hand_are_named_by_their_record_never_by_an_unrelated_variant() {
     let dir = folder("causes-by-hand");
     let scene = example("shadows");
-    // (name, the line as examples/shadows.txt has it, the edit, the record's line).
+    // (name, the line as examples/shadows.txt has it, the edit, the object's line, the
+    // light's line the differences are said to follow).
     let edits = [
         // The red sphere (line 11) 0.05 to the right: two pixels at this size.
         (
@@ -218,6 +219,7 @@ fn edits_made_by_hand_are_named_by_their_record_never_by_an_unrelated_variant() 
             "-2.4 -1.5 -5  centre",
             "-2.35 -1.5 -5  centre",
             Some(11),
+            None,
         ),
         // The red sphere's diffuse colour.
         (
@@ -225,16 +227,19 @@ fn edits_made_by_hand_are_named_by_their_record_never_by_an_unrelated_variant() 
             "4 0.8 0.8     ambient\n5 5 5",
             "4 0.8 0.8     ambient\n4 5 5",
             Some(11),
+            None,
         ),
-        // The warm light moved by half a unit: no record of the catalogue is its.
+        // The warm light (line 32) moved by half a unit: no edit of the catalogue is
+        // its, but the differences follow its term.
         (
             "light",
             "-5 3 -2       location",
             "-4.5 3 -2       location",
             None,
+            Some(32),
         ),
     ];
-    for (name, from, to, record) in edits {
+    for (name, from, to, record, light) in edits {
         let student = dir.join(format!("{name}.ppm"));
         render(&edited(&dir, &scene, name, from, to), SIZE, &[], &student);
         let (found, json) = causes(&scene, &student);
@@ -243,6 +248,9 @@ fn edits_made_by_hand_are_named_by_their_record_never_by_an_unrelated_variant() 
             let focus = json["focus"]["object"].as_str().unwrap();
             assert_eq!(focus, format!("sphere (line {line})"), "{name}");
         }
+        let followed = json["focus"]["light"]["light"].as_str();
+        let expected = light.map(|line| format!("light (line {line})"));
+        assert_eq!(followed, expected.as_deref(), "{name}: {json:#}");
     }
     // The green sphere (line 18) deleted: every cause is an edit of its record.
     let text = std::fs::read_to_string(&scene).unwrap();
