@@ -47,6 +47,29 @@ pub struct Cause {
     pub trace: Option<String>,
 }
 
+impl Cause {
+    /// A cause found from the two images alone (no variant renders it).
+    fn of_images(
+        id: String,
+        about: String,
+        counts: [usize; 3],
+        pixel: Option<[usize; 2]>,
+    ) -> Cause {
+        let [explains, of, breaks] = counts;
+        Cause {
+            id,
+            variants: Vec::new(),
+            about,
+            explains,
+            of,
+            breaks,
+            subject: None,
+            pixel,
+            trace: None,
+        }
+    }
+}
+
 /// A cause's share of what was left, at least: half.
 const HALF: f64 = 0.5;
 
@@ -81,29 +104,21 @@ pub fn explain(
     }
     // 1. The axes swapped and the bytes of the whole image: undone before anything else
     // is looked at.
-    let swapped = swapped_cause(reference, student, levels, mask);
-    let (student, mask_after_swap) = match swapped {
-        Some((cause, image)) => {
-            causes.push(cause);
-            let mask = differing(reference, &image, levels);
-            (std::borrow::Cow::Owned(image), Some(mask))
+    type Finder = fn(&Image, &Image, u8, (&[u64], usize)) -> Option<(Cause, Image)>;
+    let mut student = std::borrow::Cow::Borrowed(student);
+    let mut left: Option<(Vec<u64>, usize)> = None;
+    for find in [swapped_cause as Finder, bytes_cause] {
+        let now = left.as_ref().map_or(mask, |(m, n)| (&m[..], *n));
+        if now.1 == 0 {
+            break;
         }
-        None => (std::borrow::Cow::Borrowed(student), None),
-    };
-    let mask = mask_after_swap.as_ref().map_or(mask, |(m, n)| (&m[..], *n));
-    if mask.1 == 0 {
-        return (Vec::new(), None, causes);
+        if let Some((cause, image)) = find(reference, &student, levels, now) {
+            causes.push(cause);
+            left = Some(differing(reference, &image, levels));
+            student = std::borrow::Cow::Owned(image);
+        }
     }
-    let undone = bytes_cause(reference, &student, levels, mask);
-    let (student, owned_mask) = match undone {
-        Some((cause, image)) => {
-            causes.push(cause);
-            let mask = differing(reference, &image, levels);
-            (std::borrow::Cow::Owned(image), Some(mask))
-        }
-        None => (student, None),
-    };
-    let mask = owned_mask.as_ref().map_or(mask, |(m, n)| (&m[..], *n));
+    let mask = left.as_ref().map_or(mask, |(m, n)| (&m[..], *n));
     if mask.1 == 0 {
         return (Vec::new(), None, causes);
     }
@@ -297,19 +312,12 @@ fn swapped_cause(
         for i in 0..n * n {
             image.pixels[from(i, n)] = student.pixels[i];
         }
-        let cause = Cause {
-            id: "axes-swapped".into(),
-            variants: Vec::new(),
-            about: format!(
-                "{what} are swapped: each pixel holds the one across the image's diagonal"
-            ),
-            explains,
-            of: count,
-            breaks,
-            subject: None,
-            pixel: first.map(|i| super::pixel_at(i, n, n)),
-            trace: None,
-        };
+        let cause = Cause::of_images(
+            "axes-swapped".into(),
+            format!("{what} are swapped: each pixel holds the one across the image's diagonal"),
+            [explains, count, breaks],
+            first.map(|i| super::pixel_at(i, n, n)),
+        );
         return Some((cause, image));
     }
     None
@@ -400,23 +408,18 @@ fn bytes_cause(
     if most + may_miss >= count {
         let broken = breaks(&shift);
         if supported(most, count, broken) {
-            let cause = Cause {
-                id: format!("bytes{d:+}"),
-                variants: Vec::new(),
-                about: format!(
+            let cause = Cause::of_images(
+                format!("bytes{d:+}"),
+                format!(
                     "every byte is {} level{} {} the reference's; compare --tolerance {} passes such an image",
                     d.abs(),
                     if d.abs() == 1 { "" } else { "s" },
                     if d > 0 { "above" } else { "below" },
                     d.abs()
                 ),
-                explains: most,
-                of: count,
-                breaks: broken,
-                subject: None,
-                pixel: first(&shift),
-                trace: None,
-            };
+                [most, count, broken],
+                first(&shift),
+            );
             return Some((cause, undone(&shift)));
         }
     }
@@ -429,17 +432,12 @@ fn bytes_cause(
         if !supported(explains, count, broken) {
             continue;
         }
-        let cause = Cause {
-            id: format!("channels={name}"),
-            variants: Vec::new(),
-            about: format!("the channels are written in the order {name}, not rgb"),
-            explains,
-            of: count,
-            breaks: broken,
-            subject: None,
-            pixel: first(&swapped),
-            trace: None,
-        };
+        let cause = Cause::of_images(
+            format!("channels={name}"),
+            format!("the channels are written in the order {name}, not rgb"),
+            [explains, count, broken],
+            first(&swapped),
+        );
         return Some((cause, undone(&swapped)));
     }
     None
@@ -577,19 +575,14 @@ fn jitter_cause(
             true => repair.len(),
             false => (agreeing as f64 / looked.len() as f64 * count as f64).round() as usize,
         };
-        let cause = Cause {
-            id: "jitter".into(),
-            variants: Vec::new(),
-            about: "the camera rays look jittered, or aimed elsewhere inside their pixel: these \
+        let cause = Cause::of_images(
+            "jitter".into(),
+            "the camera rays look jittered, or aimed elsewhere inside their pixel: these \
                     differing pixels lie within what the reference takes inside their pixel"
                 .into(),
-            explains,
-            of: count,
-            breaks: 0,
-            subject: None,
-            pixel: (repair.first()).map(|&i| super::pixel_at(i, w, h)),
-            trace: None,
-        };
+            [explains, count, 0],
+            (repair.first()).map(|&i| super::pixel_at(i, w, h)),
+        );
         Some((cause, repaired))
     })
 }

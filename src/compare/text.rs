@@ -283,17 +283,10 @@ pub fn diagnosis(report: &Report) -> Vec<String> {
         // The catalogue's candidate, where the causes are its variants: its agreement.
         let variants: Vec<Variant> = causes.iter().flat_map(|c| c.variants.clone()).collect();
         let whole_image_first = causes.first().is_some_and(|c| c.variants.is_empty());
-        let found = diagnosis.iter().find(|d| d.variants == variants);
-        if found.is_none() || whole_image_first {
-            let before = 1.0 - report.differing_pixels as f64 / report.pixels.max(1) as f64;
-            line(format!(
-                "diagnosis: the reference agrees with {} of the student's pixels",
-                agreement(before)
-            ));
-        }
-        if let Some(found) = found
-            && !whole_image_first
-        {
+        let found = (diagnosis.iter())
+            .find(|d| d.variants == variants)
+            .filter(|_| !whole_image_first);
+        if let Some(found) = found {
             line(format!(
                 "diagnosis: the reference agrees with {} of the student's pixels; rendered as \
                  if with",
@@ -306,6 +299,12 @@ pub fn diagnosis(report: &Report) -> Vec<String> {
                 ids.join(","),
                 agreement(found.agreement_after),
                 about.join("; ")
+            ));
+        } else {
+            let before = 1.0 - report.differing_pixels as f64 / report.pixels.max(1) as f64;
+            line(format!(
+                "diagnosis: the reference agrees with {} of the student's pixels",
+                agreement(before)
             ));
         }
         line(

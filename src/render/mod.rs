@@ -192,7 +192,13 @@ impl Camera {
     /// point (no direction).
     #[inline]
     fn ray(&self, x: usize, y: usize) -> Option<Ray> {
-        let target = self.world(x, y);
+        self.ray_through(self.world(x, y))
+    }
+
+    /// The ray from the viewpoint through the point `target` of the screen; `None` if
+    /// it is the viewpoint.
+    #[inline]
+    fn ray_through(&self, target: DVec3) -> Option<Ray> {
         let dir = unit(target - self.viewpoint)?;
         Some(Ray {
             base: self.viewpoint,

@@ -15,7 +15,7 @@ use crate::render::shading::PatternNote;
 use crate::scene::Scene;
 use crate::scene::dump::number;
 use crate::shapes::kernel::with_kernel;
-use crate::shapes::{HitNote, Ray, Verdict, unit};
+use crate::shapes::{HitNote, Verdict};
 use glam::DVec3;
 use std::fmt::Write;
 
@@ -92,13 +92,8 @@ impl Tracing<'_> {
     /// The bytes the camera ray through the point `world` of the screen (z = 0) gives,
     /// traced without recording: what a tracer that samples elsewhere in a pixel sees.
     pub fn bytes_through(&self, world: DVec3) -> [u8; 3] {
-        let viewpoint = self.setup.camera.viewpoint;
-        let colour = match unit(world - viewpoint) {
-            Some(dir) => {
-                let ray = Ray {
-                    base: viewpoint,
-                    dir,
-                };
+        let colour = match self.setup.camera.ray_through(world) {
+            Some(ray) => {
                 with_kernel!(self.options.kernel, K => self.tracer.pixel::<K>(ray, None, &mut ()))
             }
             None => DVec3::ZERO,
@@ -111,16 +106,9 @@ impl Tracing<'_> {
     /// row off, jittered) followed as the reference follows its own.
     pub fn through(&self, pixel: (usize, usize), world: DVec3) -> Trace {
         let mut events = Vec::new();
-        let viewpoint = self.setup.camera.viewpoint;
         let kernel = self.options.kernel;
-        let colour = match unit(world - viewpoint) {
-            Some(dir) => {
-                let ray = Ray {
-                    base: viewpoint,
-                    dir,
-                };
-                with_kernel!(kernel, K => self.tracer.pixel::<K>(ray, None, &mut events))
-            }
+        let colour = match self.setup.camera.ray_through(world) {
+            Some(ray) => with_kernel!(kernel, K => self.tracer.pixel::<K>(ray, None, &mut events)),
             None => DVec3::ZERO,
         };
         Trace {
