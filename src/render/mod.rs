@@ -170,15 +170,13 @@ impl Camera {
 
     /// The world point of pixel (x, y), (0, 0) at the lower left (spec §4.1); under
     /// jitter, a point drawn within half a pixel of it, the same for the same seed.
-    #[inline]
+    // Jitter's draw is kept out of line, so that this inlines.
+    #[inline(always)]
     fn world(&self, x: usize, y: usize) -> DVec3 {
         let point = DVec3::new(self.xs[x], self.ys[y], 0.0);
         match self.jitter {
             None => point,
-            Some((seed, pixel)) => {
-                let (u, v) = jitter(seed, x, y);
-                point + DVec3::new((u - 0.5) * pixel.x, (v - 0.5) * pixel.y, 0.0)
-            }
+            Some((seed, pixel)) => jittered(point, seed, pixel, x, y),
         }
     }
 
@@ -190,9 +188,15 @@ impl Camera {
 
     /// The ray through pixel (x, y); `None` if the viewpoint is the pixel's own world
     /// point (no direction).
-    #[inline]
+    #[inline(always)]
     fn ray(&self, x: usize, y: usize) -> Option<Ray> {
         self.ray_through(self.world(x, y))
+    }
+
+    /// [`Camera::ray`] for a camera on the grid (not under jitter).
+    #[inline(always)]
+    fn grid_ray(&self, x: usize, y: usize) -> Option<Ray> {
+        self.ray_through(DVec3::new(self.xs[x], self.ys[y], 0.0))
     }
 
     /// The ray from the viewpoint through the point `target` of the screen; `None` if
@@ -205,6 +209,14 @@ impl Camera {
             dir,
         })
     }
+}
+
+/// `point` moved within half a `pixel` by the numbers drawn for (x, y) from `seed`.
+#[cold]
+#[inline(never)]
+fn jittered(point: DVec3, seed: u64, pixel: DVec2, x: usize, y: usize) -> DVec3 {
+    let (u, v) = jitter(seed, x, y);
+    point + DVec3::new((u - 0.5) * pixel.x, (v - 0.5) * pixel.y, 0.0)
 }
 
 /// Two numbers in [0, 1) drawn for pixel (x, y) from `seed`: SplitMix64 of the three,
@@ -314,9 +326,17 @@ fn pixels_of<B: Rulebook>(
             each_span(setup, options, &tracer, background, span, progress)
         }
         false => {
+            // As in span_bytes: the grid's rays without jitter's test per pixel.
+            let camera = &setup.camera;
             let pixels = |first: usize, y: usize, tile, out: &mut [[u8; 3]]| {
-                for (x, out) in (first..).zip(out) {
-                    *out = pixel_bytes::<K, B>(setup, &tracer, x, y, tile);
+                let xs = (first..).zip(out);
+                match camera.on_grid() {
+                    true => xs.for_each(|(x, out)| {
+                        *out = pixel_bytes::<K, B>(setup, &tracer, camera.grid_ray(x, y), tile)
+                    }),
+                    false => xs.for_each(|(x, out)| {
+                        *out = pixel_bytes::<K, B>(setup, &tracer, camera.ray(x, y), tile)
+                    }),
                 }
             };
             each_span(setup, options, &tracer, background, pixels, progress)
@@ -324,17 +344,16 @@ fn pixels_of<B: Rulebook>(
     })
 }
 
-/// The bytes of pixel (x, y), its camera ray traced by `tracer` through its tile's list
-/// `tile`.
+/// The bytes of a pixel whose camera ray is `ray`, traced by `tracer` through its tile's
+/// list `tile`.
 #[inline(always)]
 fn pixel_bytes<K: Kernel, B: Rulebook>(
     setup: &Setup,
     tracer: &Tracer<B>,
-    x: usize,
-    y: usize,
+    ray: Option<Ray>,
     tile: Option<Tile>,
 ) -> [u8; 3] {
-    let colour = match setup.camera.ray(x, y) {
+    let colour = match ray {
         Some(ray) => tracer.pixel::<K>(ray, tile, &mut ()),
         None => DVec3::ZERO,
     };
@@ -355,7 +374,13 @@ fn span_bytes<K: Kernel, B: Rulebook>(
 ) {
     let mut colours = [DVec3::ZERO; tiles::TILE];
     let colours = &mut colours[..out.len()];
-    tracer.span::<K>(|i| setup.camera.ray(x_of(i), y), tile, colours);
+    // The grid's rays without jitter's test in the loop over the span: with it there,
+    // the plain render took 20-55 % more CPU time at 2048x1536 (bench/ab.py, spec1, a04,
+    // d04, the gallery) for 2-3 % more instructions.
+    match setup.camera.on_grid() {
+        true => tracer.span::<K>(|i| setup.camera.grid_ray(x_of(i), y), tile, colours),
+        false => tracer.span::<K>(|i| setup.camera.ray(x_of(i), y), tile, colours),
+    }
     for (colour, out) in colours.iter().zip(out) {
         *out = setup.rules.bytes(*colour);
     }
@@ -741,7 +766,7 @@ pub fn render_pixels(scene: &Scene, options: &Options, indices: &[usize]) -> Vec
                 tile if spans => span_bytes::<K, _>(setup, tracer, |i| xs[i], y, tile, out),
                 tile => {
                     for (&x, out) in xs.iter().zip(out) {
-                        *out = pixel_bytes::<K, _>(setup, tracer, x, y, tile);
+                        *out = pixel_bytes::<K, _>(setup, tracer, setup.camera.ray(x, y), tile);
                     }
                 }
             }
