@@ -16,9 +16,11 @@
 //! centroids by the binned surface area heuristic, which can make a lopsided tree (700
 //! spheres at x = 1.5^i make a chain); below depth [`SAH_DEPTH`] the split is at the
 //! median instead, which halves the objects at each level, so no tree is deeper than
-//! `SAH_DEPTH` + 32 and the traversal stack cannot overflow. Leaves hold at most
-//! [`LEAF_SIZE`] objects. The build is deterministic: ties are broken by object index.
+//! `SAH_DEPTH` + 32 and the traversal stack cannot overflow. Each leaf holds one object.
+//! The build is deterministic: ties are broken by object index, and the halves of a
+//! large split, built at once on two threads, fill parts of the arrays fixed in advance.
 
+use super::threads::Threads;
 use crate::scene::Scene;
 use crate::shapes::Ray;
 use crate::shapes::Shape;
@@ -40,8 +42,9 @@ pub(crate) const HIERARCHY_FROM_NS: f64 = 30.0;
 /// 364M instructions over 16.6 levels) and about 140 per sphere test.
 const BUILD_COST_IN_TESTS: f64 = 1.6;
 
-/// Most objects in a leaf.
-const LEAF_SIZE: usize = 1;
+/// The fewest objects whose two halves are built on two threads at once: below it a
+/// subtree is built in less time than handing it to another thread costs.
+const PARALLEL_FROM: usize = 4096;
 
 /// The depth below which splits are at the median rather than by the surface area
 /// heuristic. Real scenes' trees are far shallower; this only bounds degenerate ones.
@@ -124,6 +127,16 @@ struct Node {
     axis: u32,
 }
 
+impl Node {
+    /// A node not yet built: every one is overwritten by [`build`].
+    const UNSET: Node = Node {
+        bounds: Aabb::EMPTY,
+        first: 0,
+        count: 0,
+        axis: 0,
+    };
+}
+
 /// Every object's padded box in scene order, `None` for an object without one, and
 /// what testing every bounded object costs.
 #[derive(Debug, Clone)]
@@ -180,18 +193,18 @@ impl Bvh {
     /// bounded objects costs less than `HIERARCHY_FROM_NS`, nor when building it costs
     /// more than scanning
     /// (a 2x2 image of a million spheres: 4 rays against a build of 20 levels).
-    pub(crate) fn for_rays(boxes: &Boxes, rays: usize) -> Option<Bvh> {
+    pub(crate) fn for_rays(boxes: &Boxes, rays: usize, threads: &Threads) -> Option<Bvh> {
         let bounded = boxes.boxes.iter().flatten().count() as f64;
         let build = BUILD_COST_IN_TESTS * bounded.log2().max(1.0);
         if (rays as f64) < build {
             return None;
         }
-        Bvh::over(boxes)
+        Bvh::over(boxes, threads)
     }
 
-    /// The tree over `boxes`, or `None` when scanning them costs less than
-    /// `HIERARCHY_FROM_NS`.
-    pub(crate) fn over(boxes: &Boxes) -> Option<Bvh> {
+    /// The tree over `boxes`, built on `threads`, or `None` when scanning them costs less
+    /// than `HIERARCHY_FROM_NS`.
+    pub(crate) fn over(boxes: &Boxes, threads: &Threads) -> Option<Bvh> {
         if boxes.scan_ns < HIERARCHY_FROM_NS {
             return None;
         }
@@ -207,69 +220,26 @@ impl Bvh {
                 None => unbounded.push(index as u32),
             }
         }
-        let mut bvh = Bvh {
-            nodes: Vec::with_capacity(2 * items.len() / LEAF_SIZE + 1),
-            order: Vec::with_capacity(items.len()),
+        // One object a leaf: a tree over n objects has n leaves and n - 1 inner nodes,
+        // so each subtree's place in the arrays is known before it is built.
+        let n = items.len();
+        let mut nodes = vec![Node::UNSET; (2 * n).saturating_sub(1)];
+        let mut order = vec![0; n];
+        let depth = threads.run(|| {
+            let place = Place {
+                nodes: &mut nodes,
+                order: &mut order,
+                at: 0,
+                first: 0,
+            };
+            build(items.as_mut_slice(), place, 0, threads)
+        });
+        Some(Bvh {
+            nodes,
+            order,
             unbounded,
-            depth: 0,
-        };
-        bvh.build(&mut items, 0);
-        Some(bvh)
-    }
-
-    /// Appends the subtree of `items`, whose root is at `depth` (0 for the whole tree),
-    /// and returns its node's index.
-    fn build(&mut self, items: &mut [Item], depth: usize) -> usize {
-        debug_assert!(depth <= MAX_DEPTH, "median splits bound the depth");
-        self.depth = self.depth.max(depth);
-        let bounds = items
-            .iter()
-            .fold(Aabb::EMPTY, |b, item| b.union(item.bounds));
-        let at = self.nodes.len();
-        self.nodes.push(Node {
-            bounds,
-            first: self.order.len() as u32,
-            count: items.len() as u32,
-            axis: 0,
-        });
-        if items.len() <= LEAF_SIZE {
-            self.order.extend(items.iter().map(|item| item.index));
-            return at;
-        }
-        let centre = |b: &Aabb| b.min + b.max;
-        let spread = items.iter().fold(Aabb::EMPTY, |b, item| {
-            let c = centre(&item.bounds);
-            b.union(Aabb { min: c, max: c })
-        });
-        let extent = spread.max - spread.min;
-        let axis = if extent.x >= extent.y && extent.x >= extent.z {
-            0
-        } else if extent.y >= extent.z {
-            1
-        } else {
-            2
-        };
-        let sah = (depth < SAH_DEPTH)
-            .then(|| sah_split(items, axis, spread.min[axis], extent[axis]))
-            .flatten();
-        let middle = match sah {
-            Some(middle) => middle,
-            None => {
-                let middle = items.len() / 2;
-                items.select_nth_unstable_by(middle, |a, b| {
-                    let (p, q) = (centre(&a.bounds)[axis], centre(&b.bounds)[axis]);
-                    p.total_cmp(&q).then(a.index.cmp(&b.index))
-                });
-                middle
-            }
-        };
-        let (left, right) = items.split_at_mut(middle);
-        self.build(left, depth + 1);
-        let right_at = self.build(right, depth + 1);
-        self.nodes[at].first = right_at as u32;
-        self.nodes[at].count = 0;
-        self.nodes[at].axis = axis as u32;
-        at
+            depth,
+        })
     }
 
     /// The closest hit (smallest t, ties to the lower index) among the objects for which
@@ -380,6 +350,97 @@ fn miss_ns(shape: &Shape) -> f64 {
 #[inline(always)]
 pub(crate) fn beats(best: Option<(usize, f64)>, index: usize, t: f64) -> bool {
     best.is_none_or(|(i, b)| t < b || (t == b && index < i))
+}
+
+/// Where a subtree goes: its nodes (its root first, then the left subtree, then the
+/// right) and its objects in leaf order, slices of the tree's arrays that begin at `at`
+/// and `first`.
+struct Place<'t> {
+    nodes: &'t mut [Node],
+    order: &'t mut [u32],
+    at: u32,
+    first: u32,
+}
+
+/// Builds the subtree of `items` (at least one), whose root is at `depth` (0 for the
+/// whole tree), into `place`, and returns the depth of its deepest node. The two halves
+/// of a split of at least [`PARALLEL_FROM`] objects are built at once on `threads` (in
+/// [`Threads::run`]): each fills its own part of the arrays, so the tree is the same
+/// whatever the threads.
+fn build(items: &mut [Item], place: Place<'_>, depth: usize, threads: &Threads) -> usize {
+    debug_assert!(depth <= MAX_DEPTH, "median splits bound the depth");
+    let (root, nodes) = place.nodes.split_first_mut().expect("a node per item");
+    let bounds = items
+        .iter()
+        .fold(Aabb::EMPTY, |b, item| b.union(item.bounds));
+    if let [item] = items {
+        place.order[0] = item.index;
+        *root = Node {
+            bounds,
+            first: place.first,
+            count: 1,
+            axis: 0,
+        };
+        return depth;
+    }
+    let centre = |b: &Aabb| b.min + b.max;
+    let spread = items.iter().fold(Aabb::EMPTY, |b, item| {
+        let c = centre(&item.bounds);
+        b.union(Aabb { min: c, max: c })
+    });
+    let extent = spread.max - spread.min;
+    let axis = if extent.x >= extent.y && extent.x >= extent.z {
+        0
+    } else if extent.y >= extent.z {
+        1
+    } else {
+        2
+    };
+    let sah = (depth < SAH_DEPTH)
+        .then(|| sah_split(items, axis, spread.min[axis], extent[axis]))
+        .flatten();
+    let middle = match sah {
+        Some(middle) => middle,
+        None => {
+            let middle = items.len() / 2;
+            items.select_nth_unstable_by(middle, |a, b| {
+                let (p, q) = (centre(&a.bounds)[axis], centre(&b.bounds)[axis]);
+                p.total_cmp(&q).then(a.index.cmp(&b.index))
+            });
+            middle
+        }
+    };
+    // The left subtree's 2 * middle - 1 nodes follow the root; the right one's come next.
+    let right_at = place.at + 2 * middle as u32;
+    *root = Node {
+        bounds,
+        first: right_at,
+        count: 0,
+        axis: axis as u32,
+    };
+    let parallel = items.len() >= PARALLEL_FROM;
+    let (left_items, right_items) = items.split_at_mut(middle);
+    let (left_nodes, right_nodes) = nodes.split_at_mut(2 * middle - 1);
+    let (left_order, right_order) = place.order.split_at_mut(middle);
+    let left = Place {
+        nodes: left_nodes,
+        order: left_order,
+        at: place.at + 1,
+        first: place.first,
+    };
+    let right = Place {
+        nodes: right_nodes,
+        order: right_order,
+        at: right_at,
+        first: place.first + middle as u32,
+    };
+    let left = || build(left_items, left, depth + 1, threads);
+    let right = || build(right_items, right, depth + 1, threads);
+    let (left, right) = match parallel {
+        true => threads.join(left, right),
+        false => (left(), right()),
+    };
+    left.max(right)
 }
 
 /// Bins of the surface area heuristic.
@@ -536,6 +597,7 @@ mod tests {
             }
         }
     }
+    use crate::render::Options;
     use crate::shapes::kernel::{Accurate, Kernel, Stable, Textbook, TextbookF32};
     use crate::shapes::testing::Numbers;
 
@@ -664,17 +726,69 @@ mod tests {
         // Three spheres cost less to test than a walk of their tree (27 ns against 30, in
         // `HIERARCHY_FROM_NS`): scanned; four, or three and a cylinder: a tree, for any real
         // image.
+        let one = Threads::one();
         let three = boxes(&crate::load(&spheres(3)).unwrap());
-        assert!(Bvh::for_rays(&three, 640 * 480).is_none());
+        assert!(Bvh::for_rays(&three, 640 * 480, &one).is_none());
         let four = boxes(&crate::load(&spheres(4)).unwrap());
-        assert!(Bvh::for_rays(&four, 640 * 480).is_some());
+        assert!(Bvh::for_rays(&four, 640 * 480, &one).is_some());
         let cylinder = "22\n1 1 1\n1 1 1\n0 0 0\n3 0 -8\n0 1 0\n0.4 1\n";
         let mixed = crate::load(&format!("{}{cylinder}", spheres(3))).unwrap();
-        assert!(Bvh::for_rays(&boxes(&mixed), 640 * 480).is_some());
+        assert!(Bvh::for_rays(&boxes(&mixed), 640 * 480, &one).is_some());
         // 1,000 objects: the build costs about 1.6 × log2(1000) = 16 tests per object, more than
         // 4 rays scanning every object, less than a 16x12 image does.
         let many = boxes(&crate::load(&spheres(1000)).unwrap());
-        assert!(Bvh::for_rays(&many, 4).is_none());
-        assert!(Bvh::for_rays(&many, 16 * 12).is_some());
+        assert!(Bvh::for_rays(&many, 4, &one).is_none());
+        assert!(Bvh::for_rays(&many, 16 * 12, &one).is_some());
+    }
+
+    /// Built on three threads, the tree over 20,000 spheres (so that several splits are
+    /// built at once) is the one built on one thread: the same nodes, objects and depth.
+    /// And it is a tree over them: every object in one leaf, every inner node's box
+    /// holding its children's, its right child where the left subtree ends.
+    #[test]
+    fn the_tree_built_on_threads_is_the_tree_built_on_one() {
+        let mut numbers = Numbers(0x2026_1127);
+        let mut text = String::from("8 6\n0 0 3\n");
+        for _ in 0..20_000 {
+            let [x, y, z] = [(); 3].map(|_| numbers.within(-50.0, 50.0));
+            let r = numbers.within(0.01, 2.0);
+            text.push_str(&format!("13\n1 1 1\n1 1 1\n0 0 0\n{x} {y} {z}\n{r}\n"));
+        }
+        let scene = crate::load(&text).unwrap();
+        let boxes = boxes(&scene);
+        let one = Bvh::over(&boxes, &Threads::one()).unwrap();
+        let options = Options {
+            threads: 3,
+            ..Options::new(8, 6)
+        };
+        let three = Bvh::over(&boxes, &Threads::of(&options)).unwrap();
+        assert_eq!(format!("{three:?}"), format!("{one:?}"));
+        // The subtree at `at`: its objects' count, after checking its boxes and links.
+        fn check(bvh: &Bvh, at: usize, seen: &mut [bool]) -> usize {
+            let node = bvh.nodes[at];
+            if node.count > 0 {
+                let index = bvh.order[node.first as usize] as usize;
+                assert!(
+                    !std::mem::replace(&mut seen[index], true),
+                    "object {index} twice"
+                );
+                return node.count as usize;
+            }
+            let (left, right) = (at + 1, node.first as usize);
+            for child in [left, right] {
+                let b = bvh.nodes[child].bounds;
+                assert!(node.bounds.min.cmple(b.min).all() && b.max.cmple(node.bounds.max).all());
+            }
+            let n = check(bvh, left, seen);
+            assert_eq!(
+                right,
+                left + 2 * n - 1,
+                "the right child follows the left subtree"
+            );
+            n + check(bvh, right, seen)
+        }
+        let mut seen = vec![false; scene.objects.len()];
+        assert_eq!(check(&three, 0, &mut seen), 20_000);
+        assert!(seen.iter().all(|&s| s));
     }
 }

@@ -72,7 +72,11 @@ impl<'a, B: Rulebook> Objects<'a, B> {
         let boxes = Boxes::for_kernel(scene, options.kernel);
         let accelerate = options.accelerate;
         let rays = options.width * options.height;
-        let bvh = accelerate.then(|| Bvh::for_rays(&boxes, rays)).flatten();
+        let one = Threads::one();
+        let threads = camera.map_or(&one, |(_, threads)| threads);
+        let bvh = accelerate
+            .then(|| Bvh::for_rays(&boxes, rays, threads))
+            .flatten();
         let hidden = |index: usize| rules.some_hidden() && rules.object(index).hidden();
         let tiles = (camera.filter(|_| accelerate)).and_then(|(camera, threads)| {
             let pixels = (&camera.xs[..], &camera.ys[..]);

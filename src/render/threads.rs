@@ -55,6 +55,30 @@ impl Threads {
         1
     }
 
+    /// `f()` on one of the threads: where [`Threads::join`] is called from inside `f`, it
+    /// spreads the work over them.
+    pub(crate) fn run<T: Send>(&self, f: impl FnOnce() -> T + Send) -> T {
+        #[cfg(feature = "threads")]
+        if let Some(pool) = &self.pool {
+            return pool.install(f);
+        }
+        f()
+    }
+
+    /// `a()` and `b()`, at once on two threads where called inside [`Threads::run`] on a
+    /// pool, else one after the other.
+    pub(crate) fn join<A: Send, B: Send>(
+        &self,
+        a: impl FnOnce() -> A + Send,
+        b: impl FnOnce() -> B + Send,
+    ) -> (A, B) {
+        #[cfg(feature = "threads")]
+        if self.pool.is_some() {
+            return rayon::join(a, b);
+        }
+        (a(), b())
+    }
+
     /// `f(i)` for every i in `0..n`, in order, spread over the threads.
     pub(crate) fn map<T: Send>(&self, n: usize, f: impl Fn(usize) -> T + Sync + Send) -> Vec<T> {
         #[cfg(feature = "threads")]
