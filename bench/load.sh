@@ -15,15 +15,7 @@ out="target/bench"
 mkdir -p "$out"
 scene="$out/million.txt"
 if [ ! -f "$scene" ]; then
-    python3 - "$scene" <<'PY'
-import random, sys
-random.seed(1)
-with open(sys.argv[1], "w") as f:
-    f.write("8 6   world\n0 0 3   viewpoint\n10\n9 9 9\n0 4 2\n")
-    for _ in range(999_999):
-        x, y, z = random.uniform(-40, 40), random.uniform(-30, 30), random.uniform(-200, -10)
-        f.write(f"13\n1 0.5 0.5\n2 2 2\n0 0 0\n{x:.3f} {y:.3f} {z:.3f}\n0.2\n")
-PY
+    python3 bench/million.py "$scene"
 fi
 python3 - "$binary" "$scene" "$RUNS" <<'PY'
 import os, resource, statistics, subprocess, sys

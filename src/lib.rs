@@ -26,6 +26,7 @@ pub mod render;
 pub mod scene;
 pub(crate) mod scene_file;
 pub mod shapes;
+mod threads;
 
 pub use error::SceneError;
 pub use render::{Image, Options, render};

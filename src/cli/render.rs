@@ -20,7 +20,9 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     let output = output_file(args.output.as_deref().filter(|_| !args.dump))?;
     args.how.check()?;
     let text = read_scene()?;
-    let scene = legacy_rt::load(&text).map_err(|error| Failure(error.to_string(), 1))?;
+    // Read on the render's threads too: the same scene or error on any number.
+    let scene = legacy_rt::scene::load_on(&text, &legacy_rt::scene::Disk, args.threads)
+        .map_err(|error| Failure(error.to_string(), 1))?;
     // The scene holds nothing of its text: free it before the render's own memory.
     drop(text);
     if args.dump {

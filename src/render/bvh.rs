@@ -20,11 +20,11 @@
 //! The build is deterministic: ties are broken by object index, and the halves of a
 //! large split, built at once on two threads, fill parts of the arrays fixed in advance.
 
-use super::threads::Threads;
 use crate::scene::Scene;
 use crate::shapes::Ray;
 use crate::shapes::Shape;
 use crate::shapes::kernel::KernelChoice;
+use crate::threads::Threads;
 use glam::DVec3;
 
 /// The hierarchy is built when testing every bounded object costs at least this much
@@ -149,14 +149,19 @@ pub(crate) struct Boxes {
 impl Boxes {
     /// The boxes of `scene`'s objects, padded for the hits of `kernel`
     /// ([`KernelChoice::box_padding`]).
+    #[cfg(test)]
     pub(crate) fn for_kernel(scene: &Scene, kernel: KernelChoice) -> Boxes {
+        Boxes::on(scene, kernel, &Threads::one())
+    }
+
+    /// [`Boxes::for_kernel`], the boxes found on `threads`.
+    pub(crate) fn on(scene: &Scene, kernel: KernelChoice, threads: &Threads) -> Boxes {
         let padding = kernel.box_padding();
-        let boxes: Vec<Option<Aabb>> = (scene.objects.iter())
-            .map(|object| {
-                let (min, max) = object.shape.bounds()?;
-                Some(pad(Aabb { min, max }, padding))
-            })
-            .collect();
+        let objects = &scene.objects;
+        let boxes: Vec<Option<Aabb>> = threads.map(objects.len(), |i| {
+            let (min, max) = objects[i].shape.bounds()?;
+            Some(pad(Aabb { min, max }, padding))
+        });
         let scan_ns = (scene.objects.iter().zip(&boxes))
             .filter(|(_, b)| b.is_some())
             .map(|(object, _)| miss_ns(&object.shape))

@@ -17,7 +17,7 @@ mod reach;
 mod record;
 mod shading;
 mod stage;
-mod threads;
+
 mod tiles;
 pub(crate) mod trace;
 mod tracer;
@@ -39,12 +39,12 @@ pub const MAX_PRECISION: f64 = record::MARGIN_REACH;
 use crate::scene::Scene;
 use crate::shapes::kernel::{Kernel, KernelChoice, with_kernel};
 use crate::shapes::{Ray, unit};
+use crate::threads::Threads;
 use glam::{DVec2, DVec3};
 use objects::From;
 use record::Recorder;
 use std::borrow::Cow;
 use std::sync::atomic::{AtomicU64, Ordering};
-use threads::Threads;
 use tiles::Tile;
 use tracer::Tracer;
 use variant::{AsWritten, Rulebook, Rules};
@@ -56,9 +56,7 @@ pub const DEFAULT_MAX_DIST: f64 = 32.0;
 /// touch could otherwise bounce without the path length ever reaching MAX_DIST.
 pub(crate) const MAX_BOUNCES: usize = 10_000;
 
-/// The most worker threads a render starts, whatever [`Options::threads`] asks for:
-/// beyond the cores there is nothing to gain, and a typo must not start 100,000 threads.
-pub const MAX_THREADS: usize = 256;
+pub use crate::threads::MAX_THREADS;
 
 /// What to render.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -18,13 +18,13 @@
 
 use super::bvh::{Boxes, Bvh, beats};
 use super::record::{Event, LightStep, Recorder, Skip};
-use super::threads::Threads;
 use super::tiles::{Tile, Tiles};
 use super::variant::Rulebook;
 use super::{Camera, Options};
 use crate::scene::{Object, Scene};
 use crate::shapes::kernel::Kernel;
 use crate::shapes::{HitNote, Notes, Ray, clearly_no_root, discriminant_note};
+use crate::threads::Threads;
 
 /// The closest hit of a ray: the object's index among the scene's objects, and t.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -69,11 +69,11 @@ impl<'a, B: Rulebook> Objects<'a, B> {
         camera: Option<(&Camera, &Threads)>,
         cells: Option<&[bool]>,
     ) -> Objects<'a, B> {
-        let boxes = Boxes::for_kernel(scene, options.kernel);
-        let accelerate = options.accelerate;
-        let rays = options.width * options.height;
         let one = Threads::one();
         let threads = camera.map_or(&one, |(_, threads)| threads);
+        let boxes = Boxes::on(scene, options.kernel, threads);
+        let accelerate = options.accelerate;
+        let rays = options.width * options.height;
         let bvh = accelerate
             .then(|| Bvh::for_rays(&boxes, rays, threads))
             .flatten();

@@ -22,8 +22,8 @@
 
 use super::bvh::Boxes;
 use super::lists::{Builder, Lists, MOST_OBJECTS};
-use super::threads::Threads;
 use crate::scene::Scene;
+use crate::threads::Threads;
 use glam::{DVec2, DVec3};
 use std::ops::Range;
 

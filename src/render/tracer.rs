@@ -10,13 +10,13 @@ use super::objects::{From, Hit, Objects};
 use super::record::{Event, LightStep, Recorder};
 use super::shading::{Screen, material_and_pattern};
 use super::stage::{Show, Stage};
-use super::threads::Threads;
 use super::tiles::{TILE, Tile};
 use super::variant::{Divisor, LightRules, ObjectRules, Rulebook};
 use super::{Camera, Options, object_colour};
 use crate::scene::{Light, Material, Scene};
 use crate::shapes::kernel::Kernel;
 use crate::shapes::{Ray, Surface, unit};
+use crate::threads::Threads;
 use glam::{DVec2, DVec3};
 
 /// The scene, its objects and what every ray needs of the options.

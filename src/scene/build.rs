@@ -68,6 +68,8 @@ impl Refusal {
 pub(super) struct Builder<'f> {
     scene: Scene,
     error: Option<Pending>,
+    /// The line of the record with the error (0 for the header's).
+    error_line: usize,
     files: &'f dyn Files,
 }
 
@@ -83,7 +85,55 @@ impl<'f> Builder<'f> {
         Builder {
             scene,
             error: None,
+            error_line: 0,
             files,
+        }
+    }
+
+    /// Room for `part`'s lights and objects, to come by [`adopt`](Self::adopt).
+    pub(super) fn reserve_for(&mut self, part: &Builder<'_>) {
+        self.scene.lights.reserve(part.scene.lights.len());
+        self.scene.objects.reserve(part.scene.objects.len());
+    }
+
+    /// Whether this builder, fed records read from a guess at a record's start
+    /// (`src/scene/parallel.rs`), holds what its records from line `line` on give: it
+    /// does unless it stopped building at an error before them.
+    pub(super) fn holds_from(&self, line: usize) -> bool {
+        self.error.is_none() || self.error_line >= line
+    }
+
+    /// Takes what `part`'s records from line `line` on give, as if this builder had
+    /// been fed them after its own (which it [`holds_from`](Self::holds_from)): their
+    /// lights and objects, the look of a run of equal plain materials shared across the
+    /// seam, and their first error unless this builder has one already.
+    pub(super) fn adopt(&mut self, part: Builder<'_>, line: usize) {
+        if self.error.is_some() {
+            return;
+        }
+        let Scene {
+            lights, objects, ..
+        } = part.scene;
+        // Records start on lines of their own, in order: a record's light or object
+        // comes from the line of its start, so the lines are increasing.
+        let first = lights.partition_point(|light| light.line < line);
+        self.scene.lights.extend(lights.into_iter().skip(first));
+        let first = objects.partition_point(|object| object.line < line);
+        let mut objects = objects.into_iter().skip(first).peekable();
+        if let (Some(last), Some(next)) = (self.scene.objects.last(), objects.peek())
+            && matches!(next.look.pattern, Pattern::Plain)
+            && *last.look == *next.look
+        {
+            let (shared, theirs) = (Arc::clone(&last.look), Arc::clone(&next.look));
+            while let Some(object) = objects.next_if(|o| Arc::ptr_eq(&o.look, &theirs)) {
+                let look = Arc::clone(&shared);
+                self.scene.objects.push(Object { look, ..object });
+            }
+        }
+        self.scene.objects.extend(objects);
+        if part.error.is_some() {
+            self.error = part.error;
+            self.error_line = part.error_line;
         }
     }
 
@@ -118,6 +168,7 @@ impl Sink for Builder<'_> {
             let (name, line) = (record.layout.name, record.line);
             locate(record, invalid).with_note(format!("the {name} record starts on line {line}"))
         };
+        self.error_line = record.line;
         let result = match record.layout.code {
             10 | 11 => light(record).map(|light| self.scene.lights.push(light)),
             _ => {

@@ -7,6 +7,7 @@
 
 mod build;
 pub(crate) mod dump;
+mod parallel;
 
 pub use crate::scene_file::MAX_RECORDS;
 pub use dump::dump;
@@ -30,8 +31,16 @@ pub fn load_with(text: &str, files: &dyn Files) -> Result<Scene, SceneError> {
         .map_err(|pending| pending.locate(text))
 }
 
-/// Where the texture files a scene names come from.
-pub trait Files {
+/// [`load_with`] on `threads` threads (0: one per core): the same scene or error, read
+/// on every thread where the text is large enough to pay for it (`src/scene/parallel.rs`).
+pub fn load_on(text: &str, files: &dyn Files, threads: usize) -> Result<Scene, SceneError> {
+    let threads = crate::threads::Threads::new(threads);
+    parallel::load(text, files, &threads).map_err(|pending| pending.locate(text))
+}
+
+/// Where the texture files a scene names come from; shared by the threads that read a
+/// large scene ([`load_on`]).
+pub trait Files: Sync {
     /// The file a scene names (as written there), or why it cannot be read, in the words
     /// of [`Disk`] so that a missing file reads the same everywhere.
     fn open(&self, name: &str) -> Result<Box<dyn std::io::BufRead + '_>, String>;

@@ -180,49 +180,91 @@ pub(crate) fn read_into(text: &str, sink: &mut impl Sink) -> Result<Option<Strin
     if text.starts_with('\u{feff}') {
         return Err(Pending::new(0, SyntaxError::ByteOrderMark));
     }
-    let mut reader = Reader {
-        text,
-        rest: text,
-        counted: std::cell::Cell::new((0, 1)),
-        split: None,
-        spare: Vec::new(),
-    };
+    let mut reader = Reader::new(text, (0, 1), 1);
     // A group that ran on across a line break is legal (scanf reads that way), but it is
     // also what a missing number looks like, and the error then shows up records later.
-    read_all(&mut reader, sink).map_err(|error| match &reader.split {
-        Some(split) => error.with_note(split.clone()),
+    read_all(&mut reader, sink).map_err(|error| match reader.splits.first() {
+        Some((_, split)) => error.with_note(split.clone()),
         None => error,
     })
 }
 
 fn read_all(reader: &mut Reader<'_>, sink: &mut impl Sink) -> Result<Option<String>, Pending> {
-    let mut header = Vec::new();
-    reader.groups(HEADER, 0, &mut header)?;
-    let [window, viewpoint]: [Group; 2] = header.try_into().map_err(|_| {
-        // The header's layout has two groups, each read or an error.
-        let (record, label) = ("header", layout::label::WINDOW);
-        Pending::new(0, crate::error::MeaningError::Internal { record, label })
-    })?;
+    let (window, viewpoint) = reader.header()?;
     sink.header(window, viewpoint);
     let mut records = 0;
-    loop {
-        reader.skip(lexeme::blank);
-        if reader.rest.is_empty() {
-            break;
-        }
-        if records == MAX_RECORDS {
-            let limit = MAX_RECORDS;
-            return Err(Pending::new(
-                reader.offset(),
-                SyntaxError::TooManyRecords { limit },
-            ));
-        }
-        let record = reader.record()?;
-        sink.record(&record);
-        reader.spare = record.groups;
-        records += 1;
+    reader
+        .records(usize::MAX, sink, |at| match records == MAX_RECORDS {
+            true => Err(too_many(at)),
+            false => {
+                records += 1;
+                Ok(true)
+            }
+        })
+        .map_err(|(_, error)| error)?;
+    Ok(reader.splits.pop().map(|(_, split)| split))
+}
+
+/// The error of a scene whose record starting at `at` is one more than [`MAX_RECORDS`].
+pub(crate) fn too_many(at: usize) -> Pending {
+    let limit = MAX_RECORDS;
+    Pending::new(at, SyntaxError::TooManyRecords { limit })
+}
+
+/// The world window and the viewpoint, and where the first record starts (the text's
+/// length if none does); or the header's error, with its split note if any.
+pub(crate) fn read_header(text: &str) -> Result<(Group, Group, usize), Pending> {
+    if text.starts_with('\u{feff}') {
+        return Err(Pending::new(0, SyntaxError::ByteOrderMark));
     }
-    Ok(reader.split.take())
+    let mut reader = Reader::new(text, (0, 1), 1);
+    let header = reader.header();
+    let split = reader.splits.pop();
+    let (window, viewpoint) = header.map_err(|error| match split {
+        Some((_, split)) => error.with_note(split),
+        None => error,
+    })?;
+    reader.skip(lexeme::blank);
+    Ok((window, viewpoint, reader.offset()))
+}
+
+/// What [`read_run`] read.
+pub(crate) struct Run {
+    /// Where the next record starts, the first at or after `until` (the text's length if
+    /// none does), or the one `go_on` stopped at; where the syntax error's record starts.
+    pub(crate) next: usize,
+    /// The syntax error in the record begun last, which ended the run.
+    pub(crate) error: Option<Pending>,
+    /// The first `cap` groups that ran on across a line break, each with the line of its
+    /// record's start, in file order, and the note [`read_into`] would give for it.
+    pub(crate) splits: Vec<(usize, String)>,
+}
+
+/// Reads the records from `from` (a record's start, or a guess at one: spec §2 marks no
+/// record's start, and a reader started inside a record reads on as scanf would) into
+/// `sink`, as [`read_into`] reads them, while they start before `until` and `go_on`,
+/// asked each one's start before it is read, says so. `known` is an offset at or before
+/// `from` and the line it lies on; `cap` is how many split groups to keep.
+pub(crate) fn read_run(
+    text: &str,
+    (from, until): (usize, usize),
+    known: (usize, usize),
+    cap: usize,
+    sink: &mut impl Sink,
+    go_on: impl FnMut(usize) -> Result<bool, Pending>,
+) -> Run {
+    let mut reader = Reader::new(text, known, cap);
+    reader.rest = &text[from..];
+    let result = reader.records(until, sink, go_on);
+    let (next, error) = match result {
+        Ok(next) => (next, None),
+        Err((at, error)) => (at, Some(error)),
+    };
+    Run {
+        next,
+        error,
+        splits: reader.splits,
+    }
 }
 
 struct Reader<'a> {
@@ -231,14 +273,61 @@ struct Reader<'a> {
     /// An offset and the 1-based line it lies on: lines are counted from the last one
     /// asked for, since the reader mostly asks for the next.
     counted: std::cell::Cell<(usize, usize)>,
-    /// A description of the first group whose numbers ran across a line break.
-    split: Option<String>,
+    /// The first `split_cap` groups whose numbers ran across a line break: their
+    /// record's line and a description.
+    splits: Vec<(usize, String)>,
+    split_cap: usize,
     /// The last record's groups, emptied and refilled for the next: one allocation for
     /// a scene rather than one a record.
     spare: Vec<Group>,
 }
 
 impl<'a> Reader<'a> {
+    /// A reader at the start of `text`, where offset `known.0` lies on line `known.1`,
+    /// that keeps `split_cap` split groups.
+    fn new(text: &'a str, known: (usize, usize), split_cap: usize) -> Reader<'a> {
+        Reader {
+            text,
+            rest: text,
+            counted: std::cell::Cell::new(known),
+            splits: Vec::new(),
+            split_cap,
+            spare: Vec::new(),
+        }
+    }
+
+    /// The header's two groups: the world window and the viewpoint.
+    fn header(&mut self) -> Result<(Group, Group), Pending> {
+        let mut header = Vec::new();
+        self.groups(HEADER, 0, &mut header)?;
+        let [window, viewpoint]: [Group; 2] = header.try_into().map_err(|_| {
+            // The header's layout has two groups, each read or an error.
+            let (record, label) = ("header", layout::label::WINDOW);
+            Pending::new(0, crate::error::MeaningError::Internal { record, label })
+        })?;
+        Ok((window, viewpoint))
+    }
+
+    /// Reads records into `sink` while they start before `until` and `go_on`, asked
+    /// each one's start, says so, and returns where the next one starts (the text's
+    /// length at its end); or the first syntax error, with where its record starts.
+    fn records(
+        &mut self,
+        until: usize,
+        sink: &mut impl Sink,
+        mut go_on: impl FnMut(usize) -> Result<bool, Pending>,
+    ) -> Result<usize, (usize, Pending)> {
+        loop {
+            self.skip(lexeme::blank);
+            let at = self.offset();
+            if self.rest.is_empty() || at >= until || !go_on(at).map_err(|e| (at, e))? {
+                return Ok(at);
+            }
+            let record = self.record().map_err(|e| (at, e))?;
+            sink.record(&record);
+            self.spare = record.groups;
+        }
+    }
     fn offset(&self) -> usize {
         self.text.len() - self.rest.len()
     }
@@ -416,14 +505,14 @@ impl<'a> Reader<'a> {
                         // blank between its numbers that holds one: the one just skipped.
                         let blank = &self.text.as_bytes()[before..self.offset()];
                         let moved_on = || blank.contains(&b'\n');
-                        if i > 1 && self.split.is_none() && moved_on() {
+                        if i > 1 && self.splits.len() < self.split_cap && moved_on() {
                             let group_line = self.line_of(at);
                             let n = i - 1;
-                            self.split = Some(format!(
+                            self.splits.push((start_line, format!(
                                 "the {record}'s {label} line (line {group_line}) holds only {n} \
                                  of its {count} numbers, so the rest were read from the \
                                  following lines: is a number missing on line {group_line}?"
-                            ));
+                            )));
                         }
                         match self.number(expected) {
                             Ok(Some(number)) => numbers.push(number),

@@ -310,3 +310,39 @@ fn an_object_takes_at_most_88_bytes() {
     ));
     assert_eq!(scene.objects[4].kind(), "procedural sphere");
 }
+
+/// A scene over a megabyte is read in chunks on several threads, and its hierarchy is
+/// built there (issue 47): the command line gives the same image on 1 and 3 threads,
+/// and for the same scene with an error near its end (a zero axis, or a word for a
+/// number), the same message and status.
+#[test]
+fn a_large_scene_is_read_and_rendered_alike_on_any_threads() {
+    let text = generated::many_objects(30_000);
+    assert!(
+        text.len() > 1 << 20,
+        "{} bytes: not read in chunks",
+        text.len()
+    );
+    // The first line labelled `label` in the last fiftieth of the text, replaced.
+    let broken = |label: &str, with: &str| {
+        let at = text.len() - text.len() / 50;
+        let end = at + text[at..].find(label).unwrap();
+        let start = text[..end].rfind('\n').unwrap() + 1;
+        format!("{}{with}{}", &text[..start], &text[end..])
+    };
+    let scenes = [
+        (text.clone(), 0),
+        (broken("   axis", "0 0 0"), 1),
+        (broken("   centre", "one two three"), 1),
+    ];
+    for (scene, status) in scenes {
+        let [one, three] = ["1", "3"].map(|threads| {
+            crate::common::run(&["--threads", threads, "64", "48"], scene.as_bytes())
+        });
+        let message = String::from_utf8_lossy(&one.stderr);
+        assert_eq!(one.status.code(), Some(status), "{message}");
+        assert_eq!(one.status.code(), three.status.code());
+        assert_eq!(one.stdout, three.stdout);
+        assert_eq!(message, String::from_utf8_lossy(&three.stderr));
+    }
+}

@@ -1,14 +1,18 @@
-//! The threads a whole image is rendered on (`--threads N`): one pool, started before
-//! anything is built, so that the camera rays' tiles (`src/render/tiles.rs`) are built on
-//! it as well as the pixels traced. Every value is computed as on one thread, only the
-//! order of the work differs: the image is the same bytes for every N.
+//! The threads a run works on (`--threads N`): the scene is read on them
+//! (`src/scene/parallel.rs`), then a render's pool, started before anything is built,
+//! builds the hierarchy (`src/render/bvh.rs`) and the camera rays' tiles
+//! (`src/render/tiles.rs`) as well as tracing the pixels. Every value is computed as on
+//! one thread, only the order of the work differs: the scene and the image are the same
+//! for every N.
 //!
 //! Without the `threads` feature (the WebAssembly build) everything runs on the calling
 //! thread.
 
-#[cfg(feature = "threads")]
-use super::MAX_THREADS;
-use super::Options;
+use crate::render::Options;
+
+/// The most worker threads a run starts, whatever [`Options::threads`] asks for: beyond
+/// the cores there is nothing to gain, and a typo must not start 100,000 threads.
+pub const MAX_THREADS: usize = 256;
 
 /// A pool of worker threads, or none: the calling thread does the work.
 pub(crate) struct Threads {
@@ -28,15 +32,21 @@ impl Threads {
     /// The threads `options` asks for: a pool of `options.threads` (0: one per core, at
     /// most [`MAX_THREADS`]) unless that is 1, or the pool cannot be started.
     pub(crate) fn of(options: &Options) -> Threads {
+        Threads::new(options.threads)
+    }
+
+    /// A pool of `count` threads (0: one per core, at most [`MAX_THREADS`]) unless that
+    /// is 1, or the pool cannot be started.
+    pub(crate) fn new(count: usize) -> Threads {
         #[cfg(feature = "threads")]
-        if options.threads != 1 {
+        if count != 1 {
             let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(options.threads.min(MAX_THREADS))
+                .num_threads(count.min(MAX_THREADS))
                 .build()
                 .ok();
             return Threads { pool };
         }
-        let _ = options;
+        let _ = count;
         Threads::one()
     }
 
