@@ -14,6 +14,10 @@ use crate::render::Options;
 /// the cores there is nothing to gain, and a typo must not start 100,000 threads.
 pub const MAX_THREADS: usize = 256;
 
+/// The items a thread takes at a time in [`Threads::fold_slices`]: enough that handing
+/// them over costs little beside their work.
+const FOLD_SLICE: usize = 1 << 15;
+
 /// A pool of worker threads, or none: the calling thread does the work.
 pub(crate) struct Threads {
     #[cfg(feature = "threads")]
@@ -87,6 +91,37 @@ impl Threads {
             return rayon::join(a, b);
         }
         (a(), b())
+    }
+
+    /// Whether [`Threads::fold_slices`] spreads `n` items over the threads: where there
+    /// are [`FOLD_SLICE`] items or more to a thread and a pool.
+    pub(crate) fn slices(&self, n: usize) -> bool {
+        #[cfg(feature = "threads")]
+        if self.pool.is_some() {
+            return n >= 2 * FOLD_SLICE;
+        }
+        let _ = n;
+        false
+    }
+
+    /// `f` over slices of `items` on the threads, called inside [`Threads::run`], the
+    /// results combined in order by `combine`: `f(items)` wherever `combine` is exact
+    /// and associative (unions of boxes, sums of counts).
+    pub(crate) fn fold_slices<I: Send, T: Send>(
+        &self,
+        items: &mut [I],
+        f: impl Fn(&mut [I]) -> T + Sync + Send,
+        combine: impl Fn(T, T) -> T + Sync + Send,
+    ) -> T {
+        #[cfg(feature = "threads")]
+        if self.pool.is_some() {
+            use rayon::prelude::*;
+            return (items.par_chunks_mut(FOLD_SLICE).map(f))
+                .reduce_with(combine)
+                .expect("at least one slice");
+        }
+        let _ = &combine;
+        f(items)
     }
 
     /// `f(i)` for every i in `0..n`, in order, spread over the threads.
