@@ -176,7 +176,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         md,
         "\nChart: `performance.svg`, render time against object count, both axes \
          logarithmic. The comparison with POV-Ray 3.7 on three scenes is \
-         `bench/compare.sh`."
+         `bench/compare.sh`; Tachyon's ratios and the threads on a quiet 16-core \
+         machine are in `quiet-machine.md` (`bench/quiet.sh`)."
     )?;
     // The last section, the per-pixel floor, is bench/floor.sh's (callgrind): kept.
     let path = root.join("docs/performance.md");
