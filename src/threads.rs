@@ -124,6 +124,16 @@ impl Threads {
         f(items)
     }
 
+    /// `items` appended to `to`, moved on the threads (called outside [`Threads::run`]).
+    pub(crate) fn append<T: Send>(&self, to: &mut Vec<T>, items: Vec<T>) {
+        #[cfg(feature = "threads")]
+        if let Some(pool) = &self.pool {
+            use rayon::prelude::*;
+            return pool.install(|| to.par_extend(items));
+        }
+        to.extend(items);
+    }
+
     /// `f(i)` for every i in `0..n`, in order, spread over the threads.
     pub(crate) fn map<T: Send>(&self, n: usize, f: impl Fn(usize) -> T + Sync + Send) -> Vec<T> {
         #[cfg(feature = "threads")]

@@ -228,7 +228,8 @@ impl Bvh {
         // One object a leaf: a tree over n objects has n leaves and n - 1 inner nodes,
         // so each subtree's place in the arrays is known before it is built.
         let n = items.len();
-        let mut nodes = vec![Node::UNSET; (2 * n).saturating_sub(1)];
+        // Filled on the threads: a million objects' nodes are 128 MB.
+        let mut nodes = threads.map((2 * n).saturating_sub(1), |_| Node::UNSET);
         let mut order = vec![0; n];
         let depth = threads.run(|| {
             let place = Place {

@@ -11,6 +11,7 @@ use crate::shapes::{
     Cone, Cylinder, FinitePlane, Hyperboloid, Invalid, Paraboloid, Parameter, Plane, PlaneFrame,
     Quadric, Shape, Sphere, positive, unit,
 };
+use crate::threads::Threads;
 use glam::{DVec2, DVec3};
 use std::sync::Arc;
 
@@ -107,30 +108,37 @@ impl<'f> Builder<'f> {
     /// been fed them after its own (which it [`holds_from`](Self::holds_from)): their
     /// lights and objects, the look of a run of equal plain materials shared across the
     /// seam, and their first error unless this builder has one already.
-    pub(super) fn adopt(&mut self, part: Builder<'_>, line: usize) {
+    pub(super) fn adopt(&mut self, part: Builder<'_>, line: usize, threads: &Threads) {
         if self.error.is_some() {
             return;
         }
         let Scene {
-            lights, objects, ..
+            lights,
+            mut objects,
+            ..
         } = part.scene;
         // Records start on lines of their own, in order: a record's light or object
         // comes from the line of its start, so the lines are increasing.
         let first = lights.partition_point(|light| light.line < line);
         self.scene.lights.extend(lights.into_iter().skip(first));
         let first = objects.partition_point(|object| object.line < line);
-        let mut objects = objects.into_iter().skip(first).peekable();
-        if let (Some(last), Some(next)) = (self.scene.objects.last(), objects.peek())
+        if first > 0 {
+            objects = objects.split_off(first);
+        }
+        if let (Some(last), Some(next)) = (self.scene.objects.last(), objects.first())
             && matches!(next.look.pattern, Pattern::Plain)
             && *last.look == *next.look
         {
             let (shared, theirs) = (Arc::clone(&last.look), Arc::clone(&next.look));
-            while let Some(object) = objects.next_if(|o| Arc::ptr_eq(&o.look, &theirs)) {
-                let look = Arc::clone(&shared);
-                self.scene.objects.push(Object { look, ..object });
+            for object in objects.iter_mut() {
+                if !Arc::ptr_eq(&object.look, &theirs) {
+                    break;
+                }
+                object.look = Arc::clone(&shared);
             }
         }
-        self.scene.objects.extend(objects);
+        // A million objects are moved on the threads.
+        threads.append(&mut self.scene.objects, objects);
         if part.error.is_some() {
             self.error = part.error;
             self.error_line = part.error_line;

@@ -98,6 +98,7 @@ fn load_in_chunks(
     }
     let mut join = Join {
         text,
+        threads,
         main,
         at: first,
         records: 0,
@@ -194,6 +195,7 @@ impl<'f> Part<'f> {
 /// The chunks joined in file order.
 struct Join<'t, 'f> {
     text: &'t str,
+    threads: &'t Threads,
     /// The scene so far.
     main: Builder<'f>,
     /// Where the next record starts.
@@ -305,7 +307,7 @@ impl Join<'_, '_> {
             self.split = first_split(usize::MAX);
         }
         self.records += count;
-        self.main.adopt(builder, line);
+        self.main.adopt(builder, line, self.threads);
         if let Some(error) = run.error {
             return Err(self.noted(error));
         }
