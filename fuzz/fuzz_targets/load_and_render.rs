@@ -1,6 +1,8 @@
-//! What users run, on any input: load the text, and if it is a scene, dump it and
-//! render it small, with the hierarchy, with the course's linear scan and with
-//! `compare`'s margins (which must agree). A panic, a hang or an allocation failure anywhere is a finding.
+//! What users run, on any input: load the text (also as a large text is read, in
+//! chunks on several threads, which must give the same scene or error), and if it is a
+//! scene, dump it and render it small, with the hierarchy, with the course's linear scan
+//! and with `compare`'s margins (which must agree). A panic, a hang or an allocation
+//! failure anywhere is a finding.
 
 #![no_main]
 
@@ -10,7 +12,17 @@ use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {
     let text = String::from_utf8_lossy(data);
-    let Ok(scene) = legacy_rt::load(&text) else {
+    let loaded = legacy_rt::load(&text);
+    let files = legacy_rt::scene::Disk;
+    for chunks in [2, 7] {
+        let chunked = legacy_rt::scene::load_in_chunks(&text, &files, 2, chunks);
+        match (&loaded, &chunked) {
+            (Ok(a), Ok(b)) => assert!(a == b),
+            (Err(a), Err(b)) => assert_eq!(a.to_string(), b.to_string()),
+            _ => panic!("read in {chunks} chunks: {chunked:?}, from the start: {loaded:?}"),
+        }
+    }
+    let Ok(scene) = loaded else {
         return;
     };
     let _ = legacy_rt::dump(&scene);

@@ -38,6 +38,20 @@ pub fn load_on(text: &str, files: &dyn Files, threads: usize) -> Result<Scene, S
     parallel::load(text, files, &threads).map_err(|pending| pending.locate(text))
 }
 
+/// [`load_with`] as [`load_on`] reads a large text, whatever its size: in `chunks`
+/// chunks on `threads` threads. For the tests and the fuzzer, which check that it gives
+/// what [`load_with`] gives.
+#[doc(hidden)]
+pub fn load_in_chunks(
+    text: &str,
+    files: &dyn Files,
+    threads: usize,
+    chunks: usize,
+) -> Result<Scene, SceneError> {
+    let threads = crate::threads::Threads::new(threads);
+    parallel::load_in_chunks(text, files, &threads, chunks).map_err(|pending| pending.locate(text))
+}
+
 /// Where the texture files a scene names come from; shared by the threads that read a
 /// large scene ([`load_on`]).
 pub trait Files: Sync {

@@ -59,7 +59,7 @@ pub(super) fn load(text: &str, files: &dyn Files, threads: &Threads) -> Result<S
 }
 
 /// The scene of `text` read in `chunks` chunks on `threads`.
-fn load_in_chunks(
+pub(super) fn load_in_chunks(
     text: &str,
     files: &dyn Files,
     threads: &Threads,
@@ -73,7 +73,9 @@ fn load_in_chunks(
     let mut bounds = vec![first];
     for k in 1..chunks {
         let cut = (first + (text.len() - first) * k / chunks).max(bounds[k - 1]);
-        let line_start = text[cut..].find('\n').map_or(text.len(), |n| cut + n + 1);
+        // A cut may fall inside a character; the newline after it is a character's end.
+        let newline = text.as_bytes()[cut..].iter().position(|&b| b == b'\n');
+        let line_start = newline.map_or(text.len(), |n| cut + n + 1);
         bounds.push(line_start.max(bounds[k - 1]));
     }
     bounds.push(text.len());
@@ -465,5 +467,9 @@ mod tests {
         // at its end whose message notes that group.
         let text = format!("8 6\n0 0 3\n{spheres}{lights}{spread}13\n1 1 1\n1");
         same_in_chunks(&text, "split groups, then an error");
+        // Comments of characters of several bytes: chunks are cut inside them.
+        let accents =
+            "13 sphère ☀☀\n1 1 1 ambiante ☀\n2 2 2 diffuse ☀\n0 0 0\n0 0 -9 ☀☀☀\n1 rayon\n";
+        same_in_chunks(&format!("8 6\n0 0 3\n{}", accents.repeat(40)), "accents");
     }
 }
