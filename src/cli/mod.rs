@@ -111,8 +111,9 @@ pub struct RenderArgs {
     #[arg(long)]
     pub dump: bool,
 
-    /// Render on N threads, at most 256; 0 means one per core. The image is the same bytes
-    /// for every N (1, the default, is the course program's single thread)
+    /// Render on N threads, at most 256; 0 means one per core; a scene of a megabyte or
+    /// more is read on them too. The image, or the error, is the same for every N (1, the
+    /// default, is the course program's single thread)
     #[arg(long, value_name = "N", default_value_t = 1, value_parser = threads)]
     pub threads: usize,
 

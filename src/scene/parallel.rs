@@ -65,7 +65,7 @@ pub(super) fn load_in_chunks(
     threads: &Threads,
     chunks: usize,
 ) -> Result<Scene, Pending> {
-    let (window, viewpoint, first) = read_header(text)?;
+    let (window, viewpoint, first, split) = read_header(text)?;
     let mut main = Builder::new(files);
     main.header(window, viewpoint);
     let chunks = chunks.max(1);
@@ -104,7 +104,7 @@ pub(super) fn load_in_chunks(
         main,
         at: first,
         records: 0,
-        split: None,
+        split,
     };
     for (k, part) in parts.into_iter().enumerate() {
         join.chunk(part, (bounds[k], bounds[k + 1]), lines[k])?;
@@ -467,6 +467,10 @@ mod tests {
         // at its end whose message notes that group.
         let text = format!("8 6\n0 0 3\n{spheres}{lights}{spread}13\n1 1 1\n1");
         same_in_chunks(&text, "split groups, then an error");
+        // The header's viewpoint run on to the next line, and an error far on: its
+        // message notes the header (the fuzzer's second find).
+        let text = format!("8 6\n0 0\n3\n{spheres}19\n1 1 1\n1 1 1\n0 0 0\n0 0 -9\n1\n2\n");
+        same_in_chunks(&text, "a split header, then an error");
         // Comments of characters of several bytes: chunks are cut inside them.
         let accents =
             "13 sphère ☀☀\n1 1 1 ambiante ☀\n2 2 2 diffuse ☀\n0 0 0\n0 0 -9 ☀☀☀\n1 rayon\n";

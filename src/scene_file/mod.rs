@@ -211,21 +211,22 @@ pub(crate) fn too_many(at: usize) -> Pending {
     Pending::new(at, SyntaxError::TooManyRecords { limit })
 }
 
-/// The world window and the viewpoint, and where the first record starts (the text's
-/// length if none does); or the header's error, with its split note if any.
-pub(crate) fn read_header(text: &str) -> Result<(Group, Group, usize), Pending> {
+/// The world window and the viewpoint, where the first record starts (the text's length
+/// if none does), and the note on the header's group that ran across a line break, if
+/// one did; or the header's error, with that note.
+pub(crate) fn read_header(text: &str) -> Result<(Group, Group, usize, Option<String>), Pending> {
     if text.starts_with('\u{feff}') {
         return Err(Pending::new(0, SyntaxError::ByteOrderMark));
     }
     let mut reader = Reader::new(text, (0, 1), 1);
     let header = reader.header();
-    let split = reader.splits.pop();
-    let (window, viewpoint) = header.map_err(|error| match split {
-        Some((_, split)) => error.with_note(split),
+    let split = reader.splits.pop().map(|(_, split)| split);
+    let (window, viewpoint) = header.map_err(|error| match &split {
+        Some(split) => error.with_note(split.clone()),
         None => error,
     })?;
     reader.skip(lexeme::blank);
-    Ok((window, viewpoint, reader.offset()))
+    Ok((window, viewpoint, reader.offset(), split))
 }
 
 /// What [`read_run`] read.
