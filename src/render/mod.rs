@@ -277,11 +277,7 @@ impl<'a> Setup<'a> {
     /// The output row that holds pixel row `y` and the reverse: H - 1 - y, or y upside
     /// down (spec §4.1, §7.3).
     fn row_of(&self, y: usize, height: usize) -> usize {
-        if self.rules.upside_down {
-            y
-        } else {
-            height - 1 - y
-        }
+        variant::output_row(y, height, self.rules.upside_down)
     }
 }
 

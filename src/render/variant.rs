@@ -657,8 +657,15 @@ impl Options {
     /// that output row `y` holds.
     pub fn row_of(&self, y: usize) -> usize {
         let upside_down = self.variants.iter().any(|v| v.kind == Kind::UpsideDown);
-        if upside_down { y } else { self.height - 1 - y }
+        output_row(y, self.height, upside_down)
     }
+}
+
+/// The output row of an image `height` rows high that holds pixel row `y` (0 at the
+/// bottom), and the reverse: H - 1 - y (spec §4.1), or y where the image is written
+/// upside down (spec §7.3).
+pub(crate) fn output_row(y: usize, height: usize, upside_down: bool) -> usize {
+    if upside_down { y } else { height - 1 - y }
 }
 
 /// Checks that every scoped variant of `options` names the line of a record of the kind it
