@@ -333,6 +333,7 @@ impl<'a> Reader<'a> {
         self.text.len() - self.rest.len()
     }
 
+    #[inline(always)]
     fn line_of(&self, offset: usize) -> usize {
         let (known, line) = self.counted.get();
         // Counted in byte-sized sums of at most 255, which the compiler turns into vector
@@ -403,6 +404,7 @@ impl<'a> Reader<'a> {
         }
     }
 
+    #[inline(always)]
     fn record(&mut self) -> Result<Record, Pending> {
         let at = self.offset();
         let line = self.line_of(at);
