@@ -422,7 +422,8 @@ pub(crate) fn with_mask(
         && at_most > best
         && best < EXPLAINED
         && worth_rendering()
-        && let Some((d, range, agreement)) = estimate_max_dist(scene, options, student, levels)
+        && let Some((d, range, agreement, pixel)) =
+            estimate_max_dist(scene, options, student, levels)
         && agreement > before
     {
         found.push(Tried {
@@ -432,7 +433,7 @@ pub(crate) fn with_mask(
             }],
             agreement,
             max_dist_range: Some(range),
-            pixel: None,
+            pixel,
             counts: None,
         });
     }
@@ -1007,15 +1008,15 @@ fn light_focus(
 }
 
 /// The MAX_DIST D under which the scene's image agrees best with `student`, the range of
-/// D that gives that same image, and the agreement; `None` if no D up to
-/// [`PROBE_LIMIT`] changes the image. D is the roundest number in the range (70 rather
-/// than 66.3).
+/// D that gives that same image, the agreement, and a pixel (output index) that differs
+/// under `options`' MAX_DIST and agrees under D; `None` if no D up to [`PROBE_LIMIT`]
+/// changes the image. D is the roundest number in the range (70 rather than 66.3).
 pub fn estimate_max_dist(
     scene: &Scene,
     options: &Options,
     student: &Image,
     levels: u8,
-) -> Option<(f64, [f64; 2], f64)> {
+) -> Option<(f64, [f64; 2], f64, Option<usize>)> {
     // MAX_DIST cuts mirror paths only (spec §4.2 step 1 never stops the camera ray): a
     // scene without a mirror has one image under every D.
     if !scene.objects.iter().any(reflects) {
@@ -1026,7 +1027,17 @@ pub fn estimate_max_dist(
         within(bytes, student.pixels[pixel], levels)
     });
     let (d, range, best) = best_max_dist(&state, &changes, |_| 1.0, options.max_dist)?;
-    Some((d, range, best / student.pixels.len().max(1) as f64))
+    // Each pixel's agreement under a MAX_DIST: the changes up to it replayed.
+    let under = |limit: f64| {
+        let mut state = state.clone();
+        for change in changes.iter().take_while(|c| c.start <= limit) {
+            state[change.pixel as usize] = change.agrees;
+        }
+        state
+    };
+    let (now, then) = (under(options.max_dist), under(d));
+    let pixel = (0..state.len()).find(|&i| !now[i] && then[i]);
+    Some((d, range, best / student.pixels.len().max(1) as f64, pixel))
 }
 
 /// The options [`estimate_max_dist`] renders with: MAX_DIST at [`PROBE_LIMIT`] or more.

@@ -1006,3 +1006,39 @@ fn max_dist_s_paths_on_a_sample_are_those_of_the_whole_image() {
         .collect();
     assert_eq!(got.iter().collect::<Vec<_>>(), expected);
 }
+
+/// A MAX_DIST estimated from the pixels names, like every other cause, a pixel it
+/// explains, with the command that traces it: one where the student's image differs
+/// from the reference (the render under MAX_DIST 32) and is the render under the
+/// estimated D.
+#[test]
+fn an_estimated_max_dist_names_a_pixel_it_explains() {
+    let dir = folder("max_dist_pixel");
+    let scene = example("mirrors");
+    let student = dir.join("student.ppm");
+    render(&scene, (80, 60), &["--max-dist", "70"], &student);
+    let reference = dir.join("reference.ppm");
+    render(&scene, (80, 60), &[], &reference);
+    let (code, json) = report(&[
+        "--diagnose",
+        scene.to_str().unwrap(),
+        student.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 1);
+    let cause = &json["causes"][0];
+    assert_eq!(cause["id"], "max-dist=70", "{json:#}");
+    let [x, y] = [0, 1].map(|k| cause["pixel"][k].as_u64().unwrap() as usize);
+    let trace = cause["trace"].as_str().unwrap();
+    assert!(
+        trace.starts_with(&format!("legacy-rt trace {x} {y} 80 60 ")),
+        "{trace}"
+    );
+    // (x, y) from the lower left: row 59 - y of the file.
+    let (_, _, theirs) = read_ppm(&student);
+    let (_, _, ours) = read_ppm(&reference);
+    let index = (59 - y) * 80 + x;
+    assert_ne!(
+        theirs[index], ours[index],
+        "pixel ({x}, {y}) does not differ"
+    );
+}
