@@ -36,6 +36,15 @@ pub(super) fn report(args: &[&str]) -> (i32, Value) {
     (exit(&output), json)
 }
 
+/// A student's image of `scene` at `size` rendered with `args`, and the reference's,
+/// written into `dir` as student.ppm and reference.ppm.
+fn pair(dir: &Path, scene: &Path, size: (u32, u32), args: &[&str]) -> (PathBuf, PathBuf) {
+    let (student, reference) = (dir.join("student.ppm"), dir.join("reference.ppm"));
+    render(scene, size, args, &student);
+    render(scene, size, &[], &reference);
+    (student, reference)
+}
+
 /// Renders `scene` at `size` with `args` into `out` (the scene on standard input, as
 /// users run it; textures are found from the repository).
 pub(super) fn render(scene: &Path, (w, h): (u32, u32), args: &[&str], out: &Path) {
@@ -597,10 +606,7 @@ fn text_ppm_and_png_students_compare_like_binary_ppm() {
 fn the_diff_image_greys_matching_pixels_and_colours_the_others_by_size() {
     let dir = folder("diff");
     let scene = example("spheres");
-    let student = dir.join("student.ppm");
-    render(&scene, (64, 48), &["--variant", "square-falloff"], &student);
-    let reference = dir.join("reference.ppm");
-    render(&scene, (64, 48), &[], &reference);
+    let (student, reference) = pair(&dir, &scene, (64, 48), &["--variant", "square-falloff"]);
     let diff = dir.join("diff.png");
     let output = compare(&[
         "--diff",
@@ -1013,12 +1019,13 @@ fn max_dist_s_paths_on_a_sample_are_those_of_the_whole_image() {
 /// estimated D.
 #[test]
 fn an_estimated_max_dist_names_a_pixel_it_explains() {
-    let dir = folder("max_dist_pixel");
     let scene = example("mirrors");
-    let student = dir.join("student.ppm");
-    render(&scene, (80, 60), &["--max-dist", "70"], &student);
-    let reference = dir.join("reference.ppm");
-    render(&scene, (80, 60), &[], &reference);
+    let (student, reference) = pair(
+        &folder("max_dist_pixel"),
+        &scene,
+        (80, 60),
+        &["--max-dist", "70"],
+    );
     let (code, json) = report(&[
         "--diagnose",
         scene.to_str().unwrap(),
