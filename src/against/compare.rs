@@ -1190,3 +1190,92 @@ fn last_line(segment: &Segment) -> usize {
     ];
     lines.into_iter().flatten().max().unwrap_or(0)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A number as printed with `decimals` digits after the point.
+    fn printed(value: f64, decimals: i32) -> Num {
+        let scale = 10f64.powi(decimals);
+        Num {
+            value: (value * scale).round() / scale,
+            half_unit: 0.5 / scale,
+        }
+    }
+
+    /// A value agrees with its printing, rounded to the printed digits; beyond that
+    /// rounding (half a unit of the last digit) a relative 1e-6 is granted for a
+    /// student's own arithmetic, and no more. NaN agrees with NaN only.
+    #[test]
+    fn a_printed_number_is_close_within_its_rounding() {
+        let exact = 2.0f64.sqrt();
+        for decimals in [2, 4, 6] {
+            let shown = printed(exact, decimals);
+            assert!(close(shown, exact), "{decimals} decimals");
+            let tolerance = shown.half_unit + 1e-6 * exact;
+            let at = |k: f64| Num {
+                value: exact + k * tolerance,
+                ..shown
+            };
+            assert!(close(at(0.99), exact) && close(at(-0.99), exact));
+            assert!(!close(at(1.01), exact) && !close(at(-1.01), exact));
+        }
+        // 1e-6 of 1e6 is 1: printed exactly (no rounding), 1e6 + 0.9 agrees, + 1.1 not.
+        let whole = |value| Num {
+            value,
+            half_unit: 0.0,
+        };
+        assert!(close(whole(1e6 + 0.9), 1e6));
+        assert!(!close(whole(1e6 + 1.1), 1e6));
+        // Below 1 the grant is 1e-6 absolute.
+        assert!(close(whole(0.5 + 0.9e-6), 0.5));
+        assert!(!close(whole(0.5 + 1.1e-6), 0.5));
+        let nan = whole(f64::NAN);
+        assert!(close(nan, f64::NAN) && !close(nan, 0.0) && !close(whole(0.0), f64::NAN));
+    }
+
+    /// A vector is close when each of exactly three components is.
+    #[test]
+    fn a_printed_vector_is_close_component_by_component() {
+        let v = DVec3::new(0.25, -1.5, 3.125);
+        let shown: Vec<Num> = v.to_array().iter().map(|&c| printed(c, 3)).collect();
+        assert!(close3(&shown, v));
+        assert!(!close3(&shown[..2], v));
+        let mut off = shown.clone();
+        off[2].value += 0.01;
+        assert!(!close3(&off, v));
+    }
+
+    /// A printed direction of length 2 is scaled to unit length, its rounding with it;
+    /// one that is a unit vector as far as its digits tell is kept as printed.
+    #[test]
+    fn a_printed_direction_is_made_unit_with_its_rounding() {
+        let long = [printed(0.0, 3), printed(2.0, 3), printed(0.0, 3)];
+        let [x, y, z] = unit(&long);
+        assert_eq!((x.value, y.value, z.value), (0.0, 1.0, 0.0));
+        assert_eq!(y.half_unit, 0.0005 / 2.0);
+        // (0.6, 0.8, 0) printed to one decimal: length 1 exactly, kept.
+        let kept = [printed(0.6, 1), printed(0.8, 1), printed(0.0, 1)];
+        assert_eq!(unit(&kept).map(|n| n.value), [0.6, 0.8, 0.0]);
+        // (0.577, 0.577, 0.577): length 0.99937, within the rounding of 3 decimals
+        // (3 x 0.0005): kept as printed rather than stretched.
+        let diagonal = [printed(0.57735, 3); 3];
+        assert_eq!(unit(&diagonal).map(|n| n.value), [0.577; 3]);
+    }
+
+    /// "A root behind the ray's base" is said of a negative t, but not of -1, the value
+    /// the course's programs print for "no hit".
+    #[test]
+    fn only_a_negative_root_other_than_minus_one_is_behind() {
+        let t = |value| Num {
+            value,
+            half_unit: 0.0,
+        };
+        assert_eq!(behind(t(-0.5)), ", a root behind the ray's base");
+        assert_eq!(behind(t(-1.0)), "");
+        assert_eq!(behind(t(2.0)), "");
+        assert_eq!(ray_name(0), "camera ray");
+        assert_eq!(ray_name(2), "reflected ray 2");
+    }
+}
