@@ -16,6 +16,7 @@ pub const MAX_THREADS: usize = 256;
 
 /// The items a thread takes at a time in [`Threads::fold_slices`]: enough that handing
 /// them over costs little beside their work.
+#[cfg_attr(not(feature = "threads"), allow(dead_code))]
 const FOLD_SLICE: usize = 1 << 15;
 
 /// A pool of worker threads, or none: the calling thread does the work.
