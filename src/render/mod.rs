@@ -17,7 +17,6 @@ mod reach;
 mod record;
 mod shading;
 mod stage;
-
 mod tiles;
 pub(crate) mod trace;
 mod tracer;

@@ -97,6 +97,11 @@ impl<'f> Builder<'f> {
         self.scene.objects.reserve(part.scene.objects.len());
     }
 
+    /// Whether an error was found: what comes after it is read, not built.
+    pub(super) fn has_error(&self) -> bool {
+        self.error.is_some()
+    }
+
     /// Whether this builder, fed records read from a guess at a record's start
     /// (`src/scene/parallel.rs`), holds what its records from line `line` on give: it
     /// does unless it stopped building at an error before them.

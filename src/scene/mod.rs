@@ -35,7 +35,11 @@ pub fn load_with(text: &str, files: &dyn Files) -> Result<Scene, SceneError> {
 /// on every thread where the text is large enough to pay for it (`src/scene/parallel.rs`).
 pub fn load_on(text: &str, files: &dyn Files, threads: usize) -> Result<Scene, SceneError> {
     let threads = crate::threads::Threads::new(threads);
-    parallel::load(text, files, &threads).map_err(|pending| pending.locate(text))
+    if !parallel::pays(text, &threads) {
+        return load_with(text, files);
+    }
+    let chunks = threads.count() * parallel::CHUNKS_PER_THREAD;
+    parallel::load_in_chunks(text, files, &threads, chunks).map_err(|pending| pending.locate(text))
 }
 
 /// [`load_with`] as [`load_on`] reads a large text, whatever its size: in `chunks`

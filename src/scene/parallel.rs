@@ -24,7 +24,7 @@ use super::Files;
 use super::Scene;
 use super::build::Builder;
 use crate::error::Pending;
-use crate::scene_file::{MAX_RECORDS, Run, Sink, read_header, read_run, too_many};
+use crate::scene_file::{MAX_RECORDS, Run, Sink, newlines, read_header, read_run, too_many};
 use crate::threads::Threads;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
@@ -33,7 +33,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 const PARALLEL_FROM_BYTES: usize = 1 << 20;
 
 /// Chunks per thread: more chunks even out the threads' shares.
-const CHUNKS_PER_THREAD: usize = 4;
+pub(super) const CHUNKS_PER_THREAD: usize = 4;
 
 /// How many groups that ran across a line break a chunk keeps: the first of those in
 /// the records taken is the one the note names.
@@ -45,17 +45,9 @@ const GUESSES: usize = 64;
 /// Records read together before the shared count of records is updated.
 const COUNT_BATCH: usize = 1024;
 
-/// The scene of `text` (texture files from `files`), read on `threads` where the text is
-/// large enough, else on the calling thread; the same scene or error either way.
-pub(super) fn load(text: &str, files: &dyn Files, threads: &Threads) -> Result<Scene, Pending> {
-    let chunks = (threads.count() * CHUNKS_PER_THREAD).min(text.len() / PARALLEL_FROM_BYTES * 64);
-    match threads.count() > 1 && text.len() >= PARALLEL_FROM_BYTES {
-        true => load_in_chunks(text, files, threads, chunks),
-        false => {
-            let mut builder = Builder::new(files);
-            crate::scene_file::read_into(text, &mut builder).and_then(|split| builder.finish(split))
-        }
-    }
+/// Whether reading `text` on `threads` pays: there are several, and the text is large.
+pub(super) fn pays(text: &str, threads: &Threads) -> bool {
+    threads.count() > 1 && text.len() >= PARALLEL_FROM_BYTES
 }
 
 /// The scene of `text` read in `chunks` chunks on `threads`.
@@ -79,9 +71,9 @@ pub(super) fn load_in_chunks(
         bounds.push(line_start.max(bounds[k - 1]));
     }
     bounds.push(text.len());
-    let newlines = |from: usize, to: usize| bytecount(&text.as_bytes()[from..to]);
-    let mut lines = vec![1 + newlines(0, first)];
-    for count in threads.map(chunks, |k| newlines(bounds[k], bounds[k + 1])) {
+    let between = |from: usize, to: usize| newlines(&text.as_bytes()[from..to]);
+    let mut lines = vec![1 + between(0, first)];
+    for count in threads.map(chunks, |k| between(bounds[k], bounds[k + 1])) {
         lines.push(lines.last().unwrap() + count);
     }
     let read = AtomicUsize::new(0);
@@ -110,15 +102,6 @@ pub(super) fn load_in_chunks(
         join.chunk(part, (bounds[k], bounds[k + 1]), lines[k])?;
     }
     join.main.finish(join.split)
-}
-
-/// The newlines in `bytes`.
-fn bytecount(bytes: &[u8]) -> usize {
-    // Byte-sized sums of at most 255, which the compiler turns into vector code.
-    (bytes.chunks(255))
-        .map(|chunk| chunk.iter().fold(0u8, |n, &b| n + u8::from(b == b'\n')))
-        .map(usize::from)
-        .sum()
 }
 
 /// A chunk's records, read from a guess at its first record's start.
@@ -218,7 +201,7 @@ impl Join<'_, '_> {
         line: usize,
     ) -> Result<(), Pending> {
         let mut part = Some(part);
-        let line_of = |at: usize| line + bytecount(&self.text.as_bytes()[from..at]);
+        let line_of = |at: usize| line + newlines(&self.text.as_bytes()[from..at]);
         while self.at < until {
             let at = self.at;
             let index = part.as_ref().and_then(|p| p.starts.binary_search(&at).ok());
@@ -276,7 +259,7 @@ impl Join<'_, '_> {
     }
 
     fn main_has_error(&self) -> bool {
-        !self.main.holds_from(usize::MAX)
+        self.main.has_error()
     }
 
     /// Takes `part`'s records from number `index` on, the one at line `line`: or the

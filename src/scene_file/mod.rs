@@ -268,6 +268,16 @@ pub(crate) fn read_run(
     }
 }
 
+/// The newlines in `bytes`: counted in byte-sized sums of at most 255, which the
+/// compiler turns into vector code (a scene of a million records has six million lines).
+#[inline(always)]
+pub(crate) fn newlines(bytes: &[u8]) -> usize {
+    (bytes.chunks(255))
+        .map(|chunk| chunk.iter().fold(0u8, |n, &b| n + u8::from(b == b'\n')))
+        .map(usize::from)
+        .sum()
+}
+
 struct Reader<'a> {
     text: &'a str,
     rest: &'a str,
@@ -336,14 +346,7 @@ impl<'a> Reader<'a> {
     #[inline(always)]
     fn line_of(&self, offset: usize) -> usize {
         let (known, line) = self.counted.get();
-        // Counted in byte-sized sums of at most 255, which the compiler turns into vector
-        // code (a scene of a million records has six million lines).
-        let newlines = |from: usize, to: usize| -> usize {
-            (self.text.as_bytes()[from..to].chunks(255))
-                .map(|chunk| chunk.iter().fold(0u8, |n, &b| n + u8::from(b == b'\n')))
-                .map(usize::from)
-                .sum()
-        };
+        let newlines = |from: usize, to: usize| newlines(&self.text.as_bytes()[from..to]);
         let line = match offset >= known {
             true => line + newlines(known, offset),
             false => line - newlines(offset, known),
