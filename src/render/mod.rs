@@ -40,11 +40,9 @@ use crate::shapes::kernel::{Kernel, KernelChoice, with_kernel};
 use crate::shapes::{Ray, unit};
 use crate::threads::Threads;
 use glam::{DVec2, DVec3};
-use objects::From;
 use record::Recorder;
 use std::borrow::Cow;
 use std::sync::atomic::{AtomicU64, Ordering};
-use tiles::Tile;
 use tracer::Tracer;
 use variant::{AsWritten, Rulebook, Rules};
 
@@ -269,8 +267,8 @@ impl<'a> Setup<'a> {
     /// The tracer, reading the rules from `book`.
     fn tracer_with<B: Rulebook>(&self, book: B, options: &Options) -> Tracer<'_, B> {
         // Tiles' lists hold for rays through the pixels' grid: not under jitter.
-        let camera = Some((&self.camera, &self.threads)).filter(|_| self.camera.on_grid());
-        Tracer::new(&self.scene, book, options, camera, None)
+        let tiles = self.camera.on_grid().then_some((&self.threads, None));
+        Tracer::new(&self.scene, book, options, &self.camera, tiles)
     }
 
     /// The output row that holds pixel row `y` and the reverse: H - 1 - y, or y upside
@@ -300,82 +298,29 @@ pub fn render(scene: &Scene, options: &Options, mut progress: impl FnMut(usize))
     }
 }
 
-/// Every pixel's bytes, in output order. Where shadow rays are cast, a tile's span of a
-/// row at a time ([`Tracer::span`]), pixel by pixel otherwise; the bytes are the same
-/// (the integration test `spans_give_each_pixels_own_bytes`).
+/// Every pixel's bytes, in output order, a tile's span of a row at a time
+/// ([`Tracer::span`]).
 fn pixels_of<B: Rulebook>(
     setup: &Setup,
     tracer: Tracer<B>,
     options: &Options,
     progress: &mut impl FnMut(usize),
 ) -> Vec<[u8; 3]> {
-    // What a camera ray that hits nothing gives, in every stage and diagnostic image.
-    let background = setup.rules.bytes(DVec3::ZERO);
-    with_kernel!(options.kernel, K => match tracer.shadow_rays() {
-        true => {
-            let span = |first: usize, y: usize, tile, out: &mut [[u8; 3]]| {
-                span_bytes::<K, B>(setup, &tracer, |i| first + i, y, tile, out);
-            };
-            each_span(setup, options, &tracer, background, span, progress)
-        }
-        false => {
-            // As in span_bytes: the grid's rays without jitter's test per pixel.
-            let camera = &setup.camera;
-            let pixels = |first: usize, y: usize, tile, out: &mut [[u8; 3]]| {
-                let xs = (first..).zip(out);
-                match camera.on_grid() {
-                    true => xs.for_each(|(x, out)| {
-                        *out = pixel_bytes::<K, B>(setup, &tracer, camera.grid_ray(x, y), tile)
-                    }),
-                    false => xs.for_each(|(x, out)| {
-                        *out = pixel_bytes::<K, B>(setup, &tracer, camera.ray(x, y), tile)
-                    }),
-                }
-            };
-            each_span(setup, options, &tracer, background, pixels, progress)
-        }
+    with_kernel!(options.kernel, K => match tracer.together() {
+        true => each_span(setup, options, spans::<K, B, true>(&tracer), progress),
+        false => each_span(setup, options, spans::<K, B, false>(&tracer), progress),
     })
 }
 
-/// The bytes of a pixel whose camera ray is `ray`, traced by `tracer` through its tile's
-/// list `tile`.
-#[inline(always)]
-fn pixel_bytes<K: Kernel, B: Rulebook>(
-    setup: &Setup,
-    tracer: &Tracer<B>,
-    ray: Option<Ray>,
-    tile: Option<Tile>,
-) -> [u8; 3] {
-    let colour = match ray {
-        Some(ray) => tracer.pixel::<K>(ray, tile, &mut ()),
-        None => DVec3::ZERO,
-    };
-    setup.rules.bytes(colour)
-}
-
-/// The bytes of the pixels (`x_of(i)`, y) for i below `out`'s length (at most
-/// [`tiles::TILE`], all in the tile whose list is `tile`), traced together by
-/// [`Tracer::span`]: each pixel's bytes are [`pixel_bytes`]'s.
-#[inline(always)]
-fn span_bytes<K: Kernel, B: Rulebook>(
-    setup: &Setup,
-    tracer: &Tracer<B>,
-    x_of: impl Fn(usize) -> usize,
-    y: usize,
-    tile: Option<Tile>,
-    out: &mut [[u8; 3]],
-) {
-    let mut colours = [DVec3::ZERO; tiles::TILE];
-    let colours = &mut colours[..out.len()];
-    // The grid's rays without jitter's test in the loop over the span: with it there,
-    // the plain render took 20-55 % more CPU time at 2048x1536 (bench/ab.py, spec1, a04,
-    // d04, the gallery) for 2-3 % more instructions.
-    match setup.camera.on_grid() {
-        true => tracer.span::<K>(|i| setup.camera.grid_ray(x_of(i), y), tile, colours),
-        false => tracer.span::<K>(|i| setup.camera.ray(x_of(i), y), tile, colours),
-    }
-    for (colour, out) in colours.iter().zip(out) {
-        *out = setup.rules.bytes(*colour);
+/// What fills a span of the plain render (the pixels from (first, y) on): their bytes,
+/// the rays traced `TOGETHER` or not ([`Tracer::span`]).
+fn spans<'t, K: Kernel, B: Rulebook, const TOGETHER: bool>(
+    tracer: &'t Tracer<B>,
+) -> impl Fn(usize, usize, &mut [[u8; 3]]) + Sync + 't {
+    move |first: usize, y: usize, out: &mut [[u8; 3]]| {
+        let count = out.len();
+        let bytes = |i: usize, colour: DVec3| out[i] = tracer.bytes(colour);
+        tracer.span::<K, TOGETHER>(|i| first + i, y, count, bytes);
     }
 }
 
@@ -387,10 +332,7 @@ pub fn count_rays(scene: &Scene, options: &Options) -> Stats {
     let tracer = setup.tracer(options);
     let count = |x: usize, y: usize| -> Stats {
         let mut stats = Stats::default();
-        if let Some(ray) = setup.camera.ray(x, y) {
-            let tile = tracer.objects.tile(x, y);
-            with_kernel!(options.kernel, K => tracer.pixel::<K>(ray, tile, &mut stats));
-        }
+        with_kernel!(options.kernel, K => tracer.pixel::<K>(x, y, &mut stats));
         stats
     };
     let per_pixel = each_pixel(&setup, options, count, &mut |_| {});
@@ -406,7 +348,7 @@ pub fn count_rays(scene: &Scene, options: &Options) -> Stats {
 /// and the benchmarks; the image is the same either way).
 pub fn acceleration(scene: &Scene, options: &Options) -> (bool, bool) {
     let setup = Setup::new(scene, options);
-    setup.tracer(options).objects.accelerated()
+    setup.tracer(options).accelerated()
 }
 
 /// `per_pixel(x, y)` of every pixel, in output order (rows top to bottom, spec §4.1), on
@@ -425,27 +367,17 @@ fn each_pixel<T: Send + Clone + Default>(
     each_row(setup, options, render_row, progress)
 }
 
-/// [`each_pixel`] for the camera rays, a tile's span of a row at a time:
-/// `per_span(first, y, tile, out)` fills the pixels from (first, y) on with the list of
-/// their tile, looked up once for the span; where the list is empty (the tile sees no
-/// object) every pixel of the span is `empty`, without a ray.
-fn each_span<'t, T: Send + Sync + Clone + Default, B: Rulebook>(
+/// [`each_pixel`] a tile's span of a row at a time: `per_span(first, y, out)` fills the
+/// pixels from (first, y) on.
+fn each_span<T: Send + Sync + Clone + Default>(
     setup: &Setup,
     options: &Options,
-    tracer: &'t Tracer<B>,
-    empty: T,
-    per_span: impl Fn(usize, usize, Option<Tile<'t>>, &mut [T]) + Sync,
+    per_span: impl Fn(usize, usize, &mut [T]) + Sync,
     progress: &mut impl FnMut(usize),
 ) -> Vec<T> {
     let render_row = |y: usize, out: &mut [T]| {
         for (span, out) in out.chunks_mut(tiles::TILE).enumerate() {
-            let first = span * tiles::TILE;
-            let tile = tracer.objects.tile(first, y);
-            if tile.is_some_and(|tile| tile.objects.is_empty()) {
-                out.fill(empty.clone());
-                continue;
-            }
-            per_span(first, y, tile, out);
+            per_span(span * tiles::TILE, y, out);
         }
     };
     each_row(setup, options, render_row, progress)
@@ -678,12 +610,9 @@ fn margins_of<const PATHS: bool, B: Rulebook>(
     // A pixel whose tile sees no object: its paths involve nothing (the slot's 0).
     let empty = Mark::new(background, Fragility::default(), FirstHit::default());
     with_kernel!(options.kernel, K => {
-        let per_pixel = |x: usize, y: usize, tile: Option<Tile>| -> Mark {
+        let per_pixel = |x: usize, y: usize| -> Mark {
             let mut rec = margins::Margins::<PATHS>::new(&sizes);
-            let colour = match setup.camera.ray(x, y) {
-                Some(ray) => tracer.pixel::<K>(ray, tile, &mut rec),
-                None => DVec3::ZERO,
-            };
+            let colour = tracer.pixel::<K>(x, y, &mut rec);
             // The colour is some sixteen roundings from the hit point: ambient plus each
             // light's diffuse × emissivity × cos θ / dist, over the path, times the
             // mirrors.
@@ -714,12 +643,16 @@ fn margins_of<const PATHS: bool, B: Rulebook>(
             }
             Mark::new(bytes, fragility, first)
         };
-        let per_span = |first: usize, y: usize, tile, out: &mut [Mark]| {
+        let per_span = |first: usize, y: usize, out: &mut [Mark]| {
+            if tracer.sees_nothing(first, y) {
+                out.fill(empty);
+                return;
+            }
             for (x, out) in (first..).zip(out) {
-                *out = per_pixel(x, y, tile);
+                *out = per_pixel(x, y);
             }
         };
-        each_span(setup, options, &tracer, empty, per_span, &mut |_| {})
+        each_span(setup, options, per_span, &mut |_| {})
     })
 }
 
@@ -733,8 +666,8 @@ fn margins_of<const PATHS: bool, B: Rulebook>(
 /// traced together, a span as in `render`.
 pub fn render_pixels(scene: &Scene, options: &Options, indices: &[usize]) -> Vec<[u8; 3]> {
     // The kernel chosen once, outside the loop over the pixels (as in `render`).
-    with_kernel!(options.kernel, K => with_tracer(scene, options, indices, |setup, tracer, background, rows| {
-        let spans = tracer.shadow_rays();
+    with_kernel!(options.kernel, K => with_tracer(scene, options, indices, |_, tracer, background, rows| {
+        let together = tracer.together();
         let mut pixels = vec![background; indices.len()];
         let mut at = 0;
         while at < indices.len() {
@@ -752,16 +685,12 @@ pub fn render_pixels(scene: &Scene, options: &Options, indices: &[usize]) -> Vec
                 xs[count] = next;
                 count += 1;
             }
-            let (xs, out) = (&xs[..count], &mut pixels[at..at + count]);
+            let out = &mut pixels[at..at + count];
             at += count;
-            match tracer.objects.tile(x, y) {
-                Some(tile) if tile.objects.is_empty() => {}
-                tile if spans => span_bytes::<K, _>(setup, tracer, |i| xs[i], y, tile, out),
-                tile => {
-                    for (&x, out) in xs.iter().zip(out) {
-                        *out = pixel_bytes::<K, _>(setup, tracer, setup.camera.ray(x, y), tile);
-                    }
-                }
+            let bytes = |i: usize, colour: DVec3| out[i] = tracer.bytes(colour);
+            match together {
+                true => tracer.span::<K, true>(|i| xs[i], y, count, bytes),
+                false => tracer.span::<K, false>(|i| xs[i], y, count, bytes),
             }
         }
         pixels
@@ -823,14 +752,8 @@ fn with_tracer<T>(
         *cell = true;
     }
     let cells = (indices.len() >= PIXELS_PER_LIST * count).then_some(cells);
-    let camera = cells.is_some().then_some((&setup.camera, &setup.threads));
-    let tracer = Tracer::new(
-        &setup.scene,
-        &setup.rules,
-        options,
-        camera,
-        cells.as_deref(),
-    );
+    let tiles = (cells.as_deref()).map(|cells| (&setup.threads, Some(cells)));
+    let tracer = Tracer::new(&setup.scene, &setup.rules, options, &setup.camera, tiles);
     let background = setup.rules.bytes(DVec3::ZERO);
     trace(&setup, &tracer, background, &mut rows)
 }
@@ -917,12 +840,9 @@ impl Recorder for Involved {
 
 /// What the paths of the pixels `indices` (output order) involve, under `options`.
 pub fn involved(scene: &Scene, options: &Options, indices: &[usize]) -> Vec<Involved> {
-    at_pixels(scene, options, indices, |setup, tracer, _, x, y| {
+    at_pixels(scene, options, indices, |_, tracer, _, x, y| {
         let mut path = Involved::default();
-        if let Some(ray) = setup.camera.ray(x, y) {
-            let tile = tracer.objects.tile(x, y);
-            with_kernel!(options.kernel, K => tracer.pixel::<K>(ray, tile, &mut path));
-        }
+        with_kernel!(options.kernel, K => tracer.pixel::<K>(x, y, &mut path));
         path
     })
 }
@@ -956,8 +876,7 @@ pub fn path_agreement(
     let changes = std::sync::Mutex::new(Vec::new());
     let path = |x: usize, y: usize| -> bool {
         let pixel = setup.row_of(y, options.height) * options.width + x;
-        let tile = tracer.objects.tile(x, y);
-        let (first, mine) = path_changes(&setup, options, &tracer, tile, (x, y), pixel, &agrees);
+        let (first, mine) = path_changes(&setup, options, &tracer, (x, y), pixel, &agrees);
         if !mine.is_empty()
             && let Ok(mut changes) = changes.lock()
         {
@@ -982,8 +901,7 @@ pub fn path_agreement_at(
     let mut changes = Vec::new();
     let mut at = 0;
     let first = at_pixels(scene, options, indices, |setup, tracer, _, x, y| {
-        let tile = tracer.objects.tile(x, y);
-        let (first, mine) = path_changes(setup, options, tracer, tile, (x, y), at, &agrees);
+        let (first, mine) = path_changes(setup, options, tracer, (x, y), at, &agrees);
         changes.extend(mine);
         at += 1;
         first
@@ -1004,7 +922,6 @@ fn path_changes<B: Rulebook>(
     setup: &Setup,
     options: &Options,
     tracer: &Tracer<B>,
-    tile: Option<Tile>,
     (x, y): (usize, usize),
     pixel: usize,
     agrees: &impl Fn(usize, [u8; 3]) -> bool,
@@ -1030,9 +947,7 @@ fn path_changes<B: Rulebook>(
         }
     }
     let mut path = Path(Vec::new());
-    if let Some(ray) = setup.camera.ray(x, y) {
-        with_kernel!(options.kernel, K => tracer.trace::<K>(ray, From::Eye(tile), &mut path));
-    }
+    with_kernel!(options.kernel, K => tracer.pixel::<K>(x, y, &mut path));
     let bytes = |colour: DVec3| setup.rules.bytes(colour);
     let mut entries = path.0.iter();
     let first = entries.next().map_or(DVec3::ZERO, |&(_, c)| c);
@@ -1058,8 +973,8 @@ fn path_changes<B: Rulebook>(
 /// `last_hit`), before the conversion to bytes.
 pub fn ray_trace(scene: &Scene, options: &Options, ray: Ray) -> DVec3 {
     let setup = Setup::new(scene, options);
-    let tracer = Tracer::new(&setup.scene, &setup.rules, options, None, None);
-    with_kernel!(options.kernel, K => tracer.pixel::<K>(ray, None, &mut ()))
+    let tracer = Tracer::new(&setup.scene, &setup.rules, options, &setup.camera, None);
+    with_kernel!(options.kernel, K => tracer.through::<K>(ray, &mut ()))
 }
 
 /// A distinct, stable colour for object `index` in `--show objects`: the golden-ratio

@@ -48,7 +48,7 @@ pub fn trace(scene: &Scene, options: &Options, x: usize, y: usize) -> Option<Tra
 pub fn tracing<T>(scene: &Scene, options: &Options, body: impl FnOnce(&Tracing<'_>) -> T) -> T {
     let setup = Setup::new(scene, options);
     // No tiles: a trace tests every object in file order whatever a render's lists hold.
-    let tracer = Tracer::new(&setup.scene, &setup.rules, options, None, None);
+    let tracer = Tracer::new(&setup.scene, &setup.rules, options, &setup.camera, None);
     body(&Tracing {
         setup: &setup,
         tracer,
@@ -94,7 +94,7 @@ impl Tracing<'_> {
     pub fn bytes_through(&self, world: DVec3) -> [u8; 3] {
         let colour = match self.setup.camera.ray_through(world) {
             Some(ray) => {
-                with_kernel!(self.options.kernel, K => self.tracer.pixel::<K>(ray, None, &mut ()))
+                with_kernel!(self.options.kernel, K => self.tracer.through::<K>(ray, &mut ()))
             }
             None => DVec3::ZERO,
         };
@@ -108,7 +108,7 @@ impl Tracing<'_> {
         let mut events = Vec::new();
         let kernel = self.options.kernel;
         let colour = match self.setup.camera.ray_through(world) {
-            Some(ray) => with_kernel!(kernel, K => self.tracer.pixel::<K>(ray, None, &mut events)),
+            Some(ray) => with_kernel!(kernel, K => self.tracer.through::<K>(ray, &mut events)),
             None => DVec3::ZERO,
         };
         Trace {

@@ -3,8 +3,9 @@
 //! material ([`Tracer::surface`]) beside it. The objects answer the closest hit and the
 //! shadow test ([`Objects`]); the stage (spec §7.2) and the variants' [`Rules`] are
 //! values read where each rule lives; a [`Recorder`] is told each step, one line each.
-//! A render that casts shadow rays takes the same steps a tile's span of pixels at a
-//! time ([`Tracer::span`]), each step across the span before the next.
+//! The one loop follows one camera ray ([`Tracer::pixel`]) or a tile's span of them
+//! together ([`Tracer::span`], the plain render where shadow rays are cast), each step
+//! across the span before the next.
 
 use super::objects::{From, Hit, Objects};
 use super::record::{Event, LightStep, Recorder};
@@ -19,11 +20,17 @@ use crate::shapes::{Ray, Surface, unit};
 use crate::threads::Threads;
 use glam::{DVec2, DVec3};
 
-/// The scene, its objects and what every ray needs of the options.
+/// A frame prepared for its pixels: the scene, its objects, the camera and what every
+/// ray needs of the options. It answers one pixel ([`Tracer::pixel`]), a tile's span of
+/// a row ([`Tracer::span`]) or a ray through any point of the screen
+/// ([`Tracer::through`]); which objects each camera ray tests (its tile's list) stays
+/// inside.
 pub(crate) struct Tracer<'a, B> {
     scene: &'a Scene,
     /// The closest hit and the shadow test.
-    pub(crate) objects: Objects<'a, B>,
+    objects: Objects<'a, B>,
+    /// Each pixel's camera ray.
+    camera: &'a Camera,
     rules: B,
     stage: Stage,
     show: Option<Show>,
@@ -33,20 +40,23 @@ pub(crate) struct Tracer<'a, B> {
 }
 
 impl<'a, B: Rulebook> Tracer<'a, B> {
-    /// The tracer of `scene` (as its variants changed it) under `options` and `rules`,
-    /// with tiles for the camera's rays when a camera is given (built on its threads):
-    /// every tile's list, or those `cells` marks
+    /// The frame of `scene` (as its variants changed it) under `options` and `rules`,
+    /// seen through `camera`, with tiles for the camera's rays when `tiles` gives the
+    /// threads to build them on: every tile's list, or those the cells mark
     /// ([`Tiles::new`](super::tiles::Tiles::new)).
     pub(crate) fn new(
         scene: &'a Scene,
         rules: B,
         options: &Options,
-        camera: Option<(&Camera, &Threads)>,
-        cells: Option<&[bool]>,
+        camera: &'a Camera,
+        tiles: Option<(&Threads, Option<&[bool]>)>,
     ) -> Tracer<'a, B> {
+        let cells = tiles.and_then(|(_, cells)| cells);
+        let tiles = tiles.map(|(threads, _)| (camera, threads));
         Tracer {
             scene,
-            objects: Objects::new(scene, rules, options, camera, cells),
+            objects: Objects::new(scene, rules, options, tiles, cells),
+            camera,
             rules,
             stage: options.stage,
             show: options.show,
@@ -58,145 +68,150 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
         }
     }
 
+    /// A colour's bytes under the render's byte rule (spec §4.7, or round-bytes or
+    /// scale-256): a constant of the rules as written.
+    #[inline(always)]
+    pub(crate) fn bytes(&self, colour: DVec3) -> [u8; 3] {
+        self.rules.bytes().of(colour)
+    }
+
     /// What texture tile mode needs of the projection.
     pub(crate) fn screen(&self) -> Screen {
         self.screen
     }
 
-    /// Whether the camera rays' colours need shadow rays: the stage casts them and the
-    /// scene has a light. [`Tracer::span`] pays where they are (a pixel waits on the
-    /// chain from its hit to its shadow ray's walk), not where they are not.
-    pub(crate) fn shadow_rays(&self) -> bool {
+    /// Whether a hierarchy and tiles were built (for the benchmarks and the tests).
+    pub(crate) fn accelerated(&self) -> (bool, bool) {
+        self.objects.accelerated()
+    }
+
+    /// Whether a span's camera rays pay for being traced together ([`Tracer::span`]):
+    /// where their colours need shadow rays (the stage casts them and the scene has a
+    /// light), for a pixel on its own waits on the chain from its hit to its shadow
+    /// ray's walk; not where they do not.
+    pub(crate) fn together(&self) -> bool {
         self.show.is_none() && self.stage.shadows() && !self.scene.lights.is_empty()
     }
 
-    /// The colour of a camera ray (with its tile's list, [`Objects::tile`]): the stage's
-    /// image, or the diagnostic image of `--show`. `K` is the render's kernel, chosen by
-    /// the caller once per render (`with_kernel!`) so that the tracer's queries run in
-    /// loops compiled for it.
+    /// The colour of pixel (x, y), (0, 0) at the lower left: its camera ray's (spec §4.1,
+    /// §4.2), or the diagnostic image of `--show`, each step told to `rec`. `K` is the
+    /// render's kernel, chosen by the caller once per render (`with_kernel!`) so that
+    /// the tracer's queries run in loops compiled for it.
     #[inline(always)]
-    pub(crate) fn pixel<K: Kernel>(
+    pub(crate) fn pixel<K: Kernel>(&self, x: usize, y: usize, rec: &mut impl Recorder) -> DVec3 {
+        match self.camera.ray(x, y) {
+            Some(ray) => self.along::<K>(ray, self.objects.tile(x, y), rec),
+            None => DVec3::ZERO,
+        }
+    }
+
+    /// The colour along `ray` from the eye, through any point of the screen (a trace's,
+    /// a sample inside a pixel), every object tested.
+    #[inline(always)]
+    pub(crate) fn through<K: Kernel>(&self, ray: Ray, rec: &mut impl Recorder) -> DVec3 {
+        self.along::<K>(ray, None, rec)
+    }
+
+    /// Whether pixel (x, y)'s tile sees no object: every pixel of it is the background,
+    /// without a ray.
+    #[inline(always)]
+    pub(crate) fn sees_nothing(&self, x: usize, y: usize) -> bool {
+        (self.objects.tile(x, y)).is_some_and(|tile| tile.objects.is_empty())
+    }
+
+    /// The colours of the pixels (`xs(i)`, y) for i below `count` (at most [`TILE`],
+    /// all in one tile), each [`Tracer::pixel`]'s without a recorder, given to
+    /// `out(i, colour)`: the tile's list looked up once (black without a ray where the
+    /// tile sees no object), and the rays traced `TOGETHER`
+    /// ([`Tracer::trace`]'s lanes) or one by one, the same colours either way. The
+    /// caller chooses that once, from [`Tracer::together`], so that each loop over the
+    /// spans is compiled for one.
+    #[inline(always)]
+    pub(crate) fn span<K: Kernel, const TOGETHER: bool>(
         &self,
-        ray: Ray,
+        xs: impl Fn(usize) -> usize,
+        y: usize,
+        count: usize,
+        mut out: impl FnMut(usize, DVec3),
+    ) {
+        let tile = self.objects.tile(xs(0), y);
+        if tile.is_some_and(|tile| tile.objects.is_empty()) {
+            // The tile sees no object: the background, without a ray.
+            (0..count).for_each(|i| out(i, DVec3::ZERO));
+            return;
+        }
+        // The grid's rays without jitter's test in the loop over the span: with it there,
+        // the plain render took 20-55 % more CPU time at 2048x1536 (bench/ab.py, spec1, a04,
+        // d04, the gallery) for 2-3 % more instructions.
+        let camera = self.camera;
+        match camera.on_grid() {
+            true => self.rays::<K, TOGETHER>(|i| camera.grid_ray(xs(i), y), tile, count, out),
+            false => self.rays::<K, TOGETHER>(|i| camera.ray(xs(i), y), tile, count, out),
+        }
+    }
+
+    /// [`Tracer::span`] for the camera rays `rays(i)`.
+    #[inline(always)]
+    fn rays<K: Kernel, const TOGETHER: bool>(
+        &self,
+        rays: impl Fn(usize) -> Option<Ray>,
         tile: Option<Tile>,
-        rec: &mut impl Recorder,
-    ) -> DVec3 {
+        count: usize,
+        mut out: impl FnMut(usize, DVec3),
+    ) {
+        // Under --show (never together) each ray's diagnostic colour.
+        if !TOGETHER || self.show.is_some() {
+            for i in 0..count {
+                let colour = match rays(i) {
+                    Some(ray) => self.along::<K>(ray, tile, &mut ()),
+                    None => DVec3::ZERO,
+                };
+                out(i, colour);
+            }
+            return;
+        }
+        let mut colours = [DVec3::ZERO; TILE];
+        let rays = |i: usize| (i < count).then(|| rays(i)).flatten();
+        self.trace::<K, (), TILE>(rays, tile, &mut [(); TILE], &mut colours);
+        for (i, colour) in colours.into_iter().enumerate().take(count) {
+            out(i, colour);
+        }
+    }
+
+    /// The colour along a camera ray, with its tile's list where it has one.
+    #[inline(always)]
+    fn along<K: Kernel>(&self, ray: Ray, tile: Option<Tile>, rec: &mut impl Recorder) -> DVec3 {
         match self.show {
-            None => self.trace::<K>(ray, From::Eye(tile), rec),
+            None => {
+                let mut colour = [DVec3::ZERO];
+                self.trace::<K, _, 1>(|_| Some(ray), tile, std::array::from_mut(rec), &mut colour);
+                colour[0]
+            }
             Some(show) => self.show::<K>(ray, show, From::Eye(tile), rec),
         }
     }
 
-    /// ray_trace of spec §4.2 from `from` along `ray`, the mirror recursion as a loop: the
-    /// colour is Σ (S₁ ⊙ … ⊙ Sₖ) ⊙ Iₖ₊₁ / total_distₖ₊₁ over the bounces.
+    /// ray_trace of spec §4.2 along the camera rays `rays(lane)` of N lanes (one pixel's,
+    /// or a tile's span of a row; `None`: a black pixel), each lane's colour into `out`
+    /// and its steps told to its recorder in `recs`. The colour is Σ (S₁ ⊙ … ⊙ Sₖ) ⊙
+    /// Iₖ₊₁ / total_distₖ₊₁ over the bounces, the mirror recursion a loop. Each step is
+    /// taken across the lanes before the next: the chains of square roots, divisions
+    /// and shadow walks of neighbouring pixels, which do not depend on each other,
+    /// overlap. Each lane gets the same operations in the same order as on its own, so
+    /// the same bytes and the same events. Where the paths are kept in arrays of N,
+    /// one lane compiles to about the instructions of a loop over one ray
+    /// (docs/architecture.md gives the figures).
     #[inline(always)]
-    pub(crate) fn trace<K: Kernel>(
+    pub(crate) fn trace<K: Kernel, R: Recorder, const N: usize>(
         &self,
-        mut ray: Ray,
-        mut from: From,
-        rec: &mut impl Recorder,
-    ) -> DVec3 {
-        let mut colour = DVec3::ZERO;
-        let mut weight = DVec3::ONE;
-        let mut total_dist = 0.0;
-        let bounces = self.rules.bounces();
-        for depth in 0..bounces + 1 {
-            // 1. A path longer than MAX_DIST is black from here.
-            if total_dist > self.max_dist {
-                rec.record(|| Event::CutOff { total_dist });
-                break;
-            }
-            rec.record(|| Event::Segment {
-                depth,
-                ray,
-                total_dist,
-            });
-            // 2. The closest hit, skipping the object the ray leaves; nothing: black.
-            let hit = self.objects.closest::<K, _>(&ray, from, rec);
-            rec.record(|| Event::Closest {
-                hit: hit.map(|h| (h.object, h.t)),
-            });
-            let Some(Hit { object, t }) = hit else { break };
-            let rules = self.rules.object(object);
-            // 3. The path grows by the segment.
-            total_dist += t;
-            let (surface, material) = self.surface(object, rules, &ray, t, total_dist, rec);
-            // 4. The ambient, and 5. every light's diffuse term.
-            let mut intensity = material.ambient;
-            if self.stage.lights() {
-                for (light, lamp) in self.scene.lights.iter().enumerate() {
-                    rec.record(|| Event::Lamp { light });
-                    let lamp_rules = self.rules.light(light);
-                    let contribution = match rules.unlit() {
-                        false => {
-                            self.diffuse::<K>(lamp, lamp_rules, object, &surface, &material, rec)
-                        }
-                        true => DVec3::ZERO,
-                    };
-                    intensity += contribution;
-                    rec.record(|| Event::Lit {
-                        light,
-                        contribution,
-                        intensity,
-                    });
-                }
-            }
-            // 6. I / total_dist.
-            let seen = intensity / self.divisor(total_dist, t);
-            colour += weight * seen;
-            rec.record(|| Event::Divided {
-                intensity,
-                total_dist,
-                seen,
-                weight,
-                colour,
-            });
-            // 7. The mirror: S ⊙ ray_trace(hit, R, total_dist, this object).
-            if depth == bounces || !self.reflects(rules, &material) {
-                break;
-            }
-            let Some(mirror) = mirror(&ray, &surface) else {
-                break;
-            };
-            weight *= material.specular;
-            ray = mirror;
-            from = From::Surface(object);
-        }
-        colour
-    }
-
-    /// The colours `out` of the camera rays `ray_of(i)`, i below `out`'s length, of one
-    /// span of a row (its pixels in one tile, at most [`TILE`]; a pixel whose ray is `None`
-    /// is black), each the colour [`Tracer::pixel`] gives it with no recorder: the loop of
-    /// [`Tracer::trace`], each step taken across the span before the next. At each depth,
-    /// every live ray's closest hit; then, light by light, every hit's direction to the
-    /// light, then the shadow rays, then the terms; then the divisions by the path and the
-    /// mirror rays. Each pixel gets the same operations in the same order as on its own, so
-    /// the same bytes. A pixel on its own waits on its chain of square roots and divisions,
-    /// from the hit point to the shadow ray; across the span the chains of neighbouring
-    /// pixels, which do not depend on each other, overlap.
-    #[inline(always)]
-    pub(crate) fn span<K: Kernel>(
-        &self,
-        ray_of: impl Fn(usize) -> Option<Ray>,
+        rays: impl Fn(usize) -> Option<Ray>,
         tile: Option<Tile>,
-        out: &mut [DVec3],
+        recs: &mut [R; N],
+        out: &mut [DVec3; N],
     ) {
-        out.fill(DVec3::ZERO);
-        // Not reached from the renders (`shadow_rays` is false under `--show`): kept so
-        // that a span is right for any caller.
-        if self.show.is_some() {
-            for (i, out) in out.iter_mut().enumerate() {
-                if let Some(ray) = ray_of(i) {
-                    *out = self.pixel::<K>(ray, tile, &mut ());
-                }
-            }
-            return;
-        }
-        let mut paths: [Option<Path>; TILE] = [None; TILE];
-        let paths = &mut paths[..out.len()];
-        for (i, path) in paths.iter_mut().enumerate() {
-            *path = ray_of(i).map(|ray| Path {
+        let mut paths: [Option<Path>; N] = [None; N];
+        for (lane, path) in paths.iter_mut().enumerate() {
+            *path = rays(lane).map(|ray| Path {
                 ray,
                 leaves: None,
                 weight: DVec3::ONE,
@@ -205,30 +220,42 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
         }
         let bounces = self.rules.bounces();
         for depth in 0..bounces + 1 {
-            // 1.-3. Every live path's closest hit and the surface there.
-            let mut hits: [Option<Lit>; TILE] = [None; TILE];
-            let hits = &mut hits[..paths.len()];
-            let mut live = false;
-            for (path, hit) in paths.iter_mut().zip(hits.iter_mut()) {
+            let mut hits: [Option<Lit>; N] = [None; N];
+            for lane in 0..N {
+                let (path, rec) = (&mut paths[lane], &mut recs[lane]);
                 let Some(p) = path else { continue };
-                if p.total_dist > self.max_dist {
+                // 1. A path longer than MAX_DIST is black from here.
+                let total_dist = p.total_dist;
+                if total_dist > self.max_dist {
+                    rec.record(|| Event::CutOff { total_dist });
                     *path = None;
                     continue;
                 }
+                let ray = p.ray;
+                rec.record(|| Event::Segment {
+                    depth,
+                    ray,
+                    total_dist,
+                });
+                // 2. The closest hit, skipping the object the ray leaves; nothing: black.
                 let from = match p.leaves {
                     None => From::Eye(tile),
                     Some(object) => From::Surface(object),
                 };
-                let Some(Hit { object, t }) = self.objects.closest::<K, _>(&p.ray, from, &mut ())
-                else {
+                let closest = self.objects.closest::<K, _>(&p.ray, from, rec);
+                rec.record(|| Event::Closest {
+                    hit: closest.map(|h| (h.object, h.t)),
+                });
+                let Some(Hit { object, t }) = closest else {
                     *path = None;
                     continue;
                 };
                 let rules = self.rules.object(object);
+                // 3. The path grows by the segment.
                 p.total_dist += t;
-                let (surface, material) =
-                    self.surface(object, rules, &p.ray, t, p.total_dist, &mut ());
-                *hit = Some(Lit {
+                let (surface, material) = self.surface(object, rules, &p.ray, t, p.total_dist, rec);
+                // 4. The ambient.
+                hits[lane] = Some(Lit {
                     object,
                     rules,
                     t,
@@ -236,24 +263,32 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
                     material,
                     intensity: material.ambient,
                 });
-                live = true;
             }
-            if !live {
+            if hits.iter().all(Option::is_none) {
                 break;
             }
-            // 4. The ambient, and 5. every light's diffuse term.
+            // 5. Every light's diffuse term.
             if self.stage.lights() {
                 for (light, lamp) in self.scene.lights.iter().enumerate() {
-                    self.light_span::<K>(light, lamp, hits);
+                    self.diffuse::<K, R, N>(light, lamp, &mut hits, recs);
                 }
             }
-            // 6. I / total_dist, and 7. the mirror.
-            for ((path, hit), colour) in paths.iter_mut().zip(hits.iter()).zip(out.iter_mut()) {
-                let (Some(p), Some(h)) = (path.as_mut(), hit) else {
+            for lane in 0..N {
+                let (path, colour, rec) = (&mut paths[lane], &mut out[lane], &mut recs[lane]);
+                let (Some(p), Some(h)) = (path.as_mut(), &hits[lane]) else {
                     continue;
                 };
+                // 6. I / total_dist.
                 let seen = h.intensity / self.divisor(p.total_dist, h.t);
                 *colour += p.weight * seen;
+                rec.record(|| Event::Divided {
+                    intensity: h.intensity,
+                    total_dist: p.total_dist,
+                    seen,
+                    weight: p.weight,
+                    colour: *colour,
+                });
+                // 7. The mirror: S ⊙ ray_trace(hit, R, total_dist, this object).
                 let mirror = match depth == bounces || !self.reflects(h.rules, &h.material) {
                     true => None,
                     false => mirror(&p.ray, &h.surface),
@@ -266,35 +301,56 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
                 p.ray = mirror;
                 p.leaves = Some(h.object);
             }
+            // Every path ended: no empty step after the last.
+            if paths.iter().all(Option::is_none) {
+                break;
+            }
         }
     }
 
-    /// Step 5 of [`Tracer::span`] for one light: every hit's direction to it, then the
-    /// shadow rays, then the terms, each added to its hit's intensity.
+    /// One light's diffuse term (spec §4.3) at each hit of [`Tracer::trace`]'s step,
+    /// added to its intensity: diffuse × emissivity × cos θ / dist, where the hit's
+    /// object is lit, the light faces the surface, its beam reaches it and no object
+    /// blocks the shadow ray. Every hit's direction to the light, then the shadow rays,
+    /// then the terms.
     #[inline(always)]
-    fn light_span<K: Kernel>(&self, light: usize, lamp: &Light, hits: &mut [Option<Lit>]) {
+    fn diffuse<K: Kernel, R: Recorder, const N: usize>(
+        &self,
+        light: usize,
+        lamp: &Light,
+        hits: &mut [Option<Lit>; N],
+        recs: &mut [R; N],
+    ) {
         let rules = self.rules.light(light);
-        let mut towards: [Option<Towards>; TILE] = [None; TILE];
-        let towards = &mut towards[..hits.len()];
-        for (hit, towards) in hits.iter().zip(towards.iter_mut()) {
-            if let Some(h) = hit.as_ref().filter(|h| !h.rules.unlit()) {
-                *towards = self.towards(lamp, rules, &h.surface, &h.material, &mut ());
+        let mut towards: [Option<Towards>; N] = [None; N];
+        for lane in 0..N {
+            let Some(h) = &hits[lane] else { continue };
+            let rec = &mut recs[lane];
+            rec.record(|| Event::Lamp { light });
+            if !h.rules.unlit() {
+                towards[lane] = self.towards(lamp, rules, &h.surface, &h.material, rec);
             }
         }
-        for (hit, towards) in hits.iter().zip(towards.iter_mut()) {
-            if let (Some(h), Some(to)) = (hit, &towards)
-                && self.shadowed::<K>(rules, h.object, to, &mut ())
+        for lane in 0..N {
+            if let (Some(h), Some(to)) = (&hits[lane], &towards[lane])
+                && self.shadowed::<K>(rules, h.object, to, &mut recs[lane])
             {
-                *towards = None;
+                towards[lane] = None;
             }
         }
-        for (hit, towards) in hits.iter_mut().zip(towards.iter()) {
-            if let Some(h) = hit {
-                h.intensity += match towards {
-                    Some(to) => term(lamp, rules, &h.material, to),
-                    None => DVec3::ZERO,
-                };
-            }
+        for lane in 0..N {
+            let Some(h) = &mut hits[lane] else { continue };
+            let contribution = match &towards[lane] {
+                Some(to) => term(lamp, rules, &h.material, to),
+                None => DVec3::ZERO,
+            };
+            h.intensity += contribution;
+            let intensity = h.intensity;
+            recs[lane].record(|| Event::Lit {
+                light,
+                contribution,
+                intensity,
+            });
         }
     }
 
@@ -329,28 +385,6 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
             pattern,
         });
         (surface, material)
-    }
-
-    /// One light's diffuse term at a hit on `object` (spec §4.3): diffuse × emissivity ×
-    /// cos θ / dist, where the light faces the surface, its beam reaches it and no object
-    /// blocks the shadow ray.
-    #[inline]
-    fn diffuse<K: Kernel>(
-        &self,
-        light: &Light,
-        rules: LightRules,
-        object: usize,
-        surface: &Surface,
-        material: &Material,
-        rec: &mut impl Recorder,
-    ) -> DVec3 {
-        let Some(towards) = self.towards(light, rules, surface, material, rec) else {
-            return DVec3::ZERO;
-        };
-        if self.shadowed::<K>(rules, object, &towards, rec) {
-            return DVec3::ZERO;
-        }
-        term(light, rules, material, &towards)
     }
 
     /// The light as the hit sees it: the shadow ray toward it, its distance and cos θ,
@@ -469,7 +503,7 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
     }
 }
 
-/// A ray of [`Tracer::span`] between its bounces: the ray about to be traced, the object
+/// A lane of [`Tracer::trace`] between its bounces: the ray about to be traced, the object
 /// it leaves (none for the camera ray), the product of the mirrors' speculars so far and
 /// the path's length.
 #[derive(Clone, Copy)]
@@ -480,7 +514,7 @@ struct Path {
     total_dist: f64,
 }
 
-/// A hit of [`Tracer::span`], with what its shading needs.
+/// A lane's hit in [`Tracer::trace`], with what its shading needs.
 #[derive(Clone, Copy)]
 struct Lit {
     object: usize,
@@ -494,7 +528,7 @@ struct Lit {
 
 /// A light as a hit sees it (spec §4.3): the shadow ray from the hit toward it (its
 /// direction the unit vector u), the light's distance, and cos θ against the normal.
-/// [`Tracer::span`] keeps the ray here from the direction's step to the shadow rays':
+/// [`Tracer::trace`] keeps the ray here from the direction's step to the shadow rays':
 /// a ray put together just before its walk was read back before its stores had
 /// landed, a stall that cost more than the staging saved.
 #[derive(Clone, Copy)]

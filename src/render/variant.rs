@@ -739,6 +739,18 @@ pub(crate) enum Bytes {
 }
 
 impl Bytes {
+    /// A colour's three bytes under this rule.
+    #[inline(always)]
+    pub(crate) fn of(self, colour: DVec3) -> [u8; 3] {
+        // The rule chosen once, not per channel.
+        let channels = colour.to_array();
+        match self {
+            Bytes::Truncate => channels.map(|c| Bytes::Truncate.byte(c)),
+            Bytes::Round => channels.map(|c| Bytes::Round.byte(c)),
+            Bytes::Scale256 => channels.map(|c| Bytes::Scale256.byte(c)),
+        }
+    }
+
     /// The byte of `channel` under this rule. NaN gives 0.
     #[inline]
     pub(crate) fn byte(self, channel: f64) -> u8 {
@@ -1008,10 +1020,11 @@ impl Rules {
     }
 
     /// Whether the tracer's rules are all as written (spec §4-§5): no variant of the
-    /// tracer or the hits applies, whatever those of the camera, the bytes or the scene
+    /// tracer, the hits or the bytes applies, whatever those of the camera or the scene
     /// do. A render then reads them from [`AsWritten`].
     pub(crate) fn as_written(&self) -> bool {
-        self.objects.iter().all(|o| *o == ObjectRules::default())
+        self.bytes == Bytes::Truncate
+            && self.objects.iter().all(|o| *o == ObjectRules::default())
             && self.lights.iter().all(|l| *l == LightRules::default())
             && self.epsilons.is_none()
             && self.bounces == super::MAX_BOUNCES
@@ -1022,13 +1035,7 @@ impl Rules {
     /// A colour's bytes (spec §4.7, or round-bytes or scale-256).
     #[inline(always)]
     pub(crate) fn bytes(&self, colour: DVec3) -> [u8; 3] {
-        // The rule chosen once, not per channel.
-        let channels = colour.to_array();
-        match self.bytes {
-            Bytes::Truncate => channels.map(|c| Bytes::Truncate.byte(c)),
-            Bytes::Round => channels.map(|c| Bytes::Round.byte(c)),
-            Bytes::Scale256 => channels.map(|c| Bytes::Scale256.byte(c)),
-        }
+        self.bytes.of(colour)
     }
 
     /// The scene as the variants of its geometry change it (no-z-rule, tile-parity,
@@ -1124,6 +1131,8 @@ pub(crate) trait Rulebook: Copy + Send + Sync {
     /// Hits at this distance or farther are misses: under far-clip only (`None` as
     /// written, which the compiler leaves out of the hit tests of [`AsWritten`]).
     fn far(self) -> Option<f64>;
+    /// How a colour becomes bytes (spec §4.7, or round-bytes or scale-256).
+    fn bytes(self) -> Bytes;
 }
 
 /// The rules of spec §4-§5 as written, known when the tracer is compiled.
@@ -1163,6 +1172,10 @@ impl Rulebook for AsWritten {
     fn far(self) -> Option<f64> {
         None
     }
+    #[inline(always)]
+    fn bytes(self) -> Bytes {
+        Bytes::Truncate
+    }
 }
 
 impl Rulebook for &Rules {
@@ -1197,6 +1210,10 @@ impl Rulebook for &Rules {
     #[inline(always)]
     fn far(self) -> Option<f64> {
         (self.far < f64::INFINITY).then_some(self.far)
+    }
+    #[inline(always)]
+    fn bytes(self) -> Bytes {
+        self.bytes
     }
 }
 
