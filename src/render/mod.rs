@@ -665,36 +665,46 @@ fn margins_of<const PATHS: bool, B: Rulebook>(
 /// cast, the pixels that follow each other in `indices` within one row of one tile are
 /// traced together, a span as in `render`.
 pub fn render_pixels(scene: &Scene, options: &Options, indices: &[usize]) -> Vec<[u8; 3]> {
-    // The kernel chosen once, outside the loop over the pixels (as in `render`).
+    // The kernel chosen once, outside the loop over the pixels (as in `render`), and
+    // whether the spans' rays go together: each loop is compiled for one.
     with_kernel!(options.kernel, K => with_tracer(scene, options, indices, |_, tracer, background, rows| {
-        let together = tracer.together();
-        let mut pixels = vec![background; indices.len()];
-        let mut at = 0;
-        while at < indices.len() {
-            // The pixel at `at` and those after it in its row and tile, as in `render`'s
-            // spans: at most a tile's width.
-            let (x, y) = rows.at(indices[at]);
-            let mut xs = [x; tiles::TILE];
-            let mut count = 1;
-            while count < tiles::TILE
-                && let Some(&i) = indices.get(at + count)
-                && let (next, row) = rows.at(i)
-                && row == y
-                && next / tiles::TILE == x / tiles::TILE
-            {
-                xs[count] = next;
-                count += 1;
-            }
-            let out = &mut pixels[at..at + count];
-            at += count;
-            let bytes = |i: usize, colour: DVec3| out[i] = tracer.bytes(colour);
-            match together {
-                true => tracer.span::<K, true>(|i| xs[i], y, count, bytes),
-                false => tracer.span::<K, false>(|i| xs[i], y, count, bytes),
-            }
+        match tracer.together() {
+            true => spans_of::<K, true>(tracer, indices, background, rows),
+            false => spans_of::<K, false>(tracer, indices, background, rows),
         }
-        pixels
     }))
+}
+
+/// [`render_pixels`] with `tracer`, the rays of each span traced `TOGETHER` or not.
+fn spans_of<K: Kernel, const TOGETHER: bool>(
+    tracer: &Tracer<&Rules>,
+    indices: &[usize],
+    background: [u8; 3],
+    rows: &mut Rows,
+) -> Vec<[u8; 3]> {
+    let mut pixels = vec![background; indices.len()];
+    let mut at = 0;
+    while at < indices.len() {
+        // The pixel at `at` and those after it in its row and tile, as in `render`'s
+        // spans: at most a tile's width.
+        let (x, y) = rows.at(indices[at]);
+        let mut xs = [x; tiles::TILE];
+        let mut count = 1;
+        while count < tiles::TILE
+            && let Some(&i) = indices.get(at + count)
+            && let (next, row) = rows.at(i)
+            && row == y
+            && next / tiles::TILE == x / tiles::TILE
+        {
+            xs[count] = next;
+            count += 1;
+        }
+        let out = &mut pixels[at..at + count];
+        at += count;
+        let bytes = |i: usize, colour: DVec3| out[i] = tracer.bytes(colour);
+        tracer.span::<K, TOGETHER>(|i| xs[i], y, count, bytes);
+    }
+    pixels
 }
 
 /// How many of the pixels to trace a tile must hold, on average, for its list to be
