@@ -14,8 +14,9 @@
 
 mod support;
 
+use legacy_rt::compare::render_with_margins;
 use legacy_rt::compare::{self, Settings, Tolerance};
-use legacy_rt::render::{Options, Variant, render, render_with_margins};
+use legacy_rt::render::{Options, Variant, render};
 use std::path::Path;
 use std::time::Instant;
 

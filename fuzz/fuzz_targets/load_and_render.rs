@@ -7,7 +7,8 @@
 #![no_main]
 
 use legacy_rt::compare;
-use legacy_rt::render::{Options, render, render_with_margins};
+use legacy_rt::compare::render_with_margins;
+use legacy_rt::render::{Options, render};
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {

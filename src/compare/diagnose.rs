@@ -5,27 +5,28 @@
 //! paths involve (the first hit, the mirror's hits, the shadow rays' blockers, the lights
 //! that reach them): a student's own mistake is most often one object or one light done
 //! wrong. Each candidate is first tried on a sample, the differing pixels and as many
-//! agreeing ones, rendered by the renderer's own code ([`render::render_pixels`]), which
+//! agreeing ones, rendered by the renderer's own code ([`super::render_pixels`]), which
 //! estimates its agreement with the student's image (the share of pixels within the
 //! tolerance); only the best is scored exactly, and what is reported is its exact
 //! agreement. The best is tried together with each other candidate the same way.
 //!
 //! A candidate's bytes come from the renderer's code only where it can change them: the
-//! reference keeps each pixel's paths ([`render::Paths`]: the objects hit, the shadows'
+//! reference keeps each pixel's paths ([`super::Paths`]: the objects hit, the shadows'
 //! blockers, the lights, the bytes under the other byte rules), and a variant of one
-//! record re-traces only the pixels whose paths name it ([`render::Reach`]); the others
+//! record re-traces only the pixels whose paths name it ([`super::Reach`]); the others
 //! keep the reference's bytes. Its exact agreement then costs the pixels it touches, not
 //! a whole render (which the variants of the camera, the divisor or the geometry still
 //! take).
 //! MAX_DIST is not guessed from a list: one render with long paths records each pixel's
-//! bytes after each mirror bounce ([`render::path_agreement`]), which gives the image
+//! bytes after each mirror bounce ([`super::path_agreement`]), which gives the image
 //! under every MAX_DIST at once, and the best D is read off ([`estimate_max_dist`]); the
-//! same sweep on the large sample ([`render::path_agreement_at`]) first tells whether
+//! same sweep on the large sample ([`super::path_agreement_at`]) first tells whether
 //! that render is worth making.
 
+use super::Reach;
 use super::{Reference, within};
 use crate::render::variant::{Row, Scope};
-use crate::render::{self, Image, Kind, Options, Reach, VARIANTS, Variant};
+use crate::render::{self, Image, Kind, Options, VARIANTS, Variant};
 use crate::scene::{Material, Object, Pattern, Scene};
 use crate::shapes::Shape;
 use serde::Serialize;
@@ -250,7 +251,7 @@ pub(crate) fn with_mask(
                 reached(scene, &options, (reach, rendered), at, |_, b| bytes.push(b));
                 bytes
             }
-            None => render::render_pixels(scene, &options, sample),
+            None => super::render_pixels(scene, &options, sample),
         };
         let fixed: Vec<usize> = (sample_d.iter().zip(&bytes))
             .filter(|&(&i, &b)| agrees(i, b))
@@ -290,8 +291,8 @@ pub(crate) fn with_mask(
         candidates.truncate(SHORTLIST);
     };
     let (sample, split) = &samples[1];
-    let paths = render::involved(scene, options, &sample[..*split]);
-    let agreeing_paths = render::involved(scene, options, &sample[*split..]);
+    let paths = super::involved(scene, options, &sample[..*split]);
+    let agreeing_paths = super::involved(scene, options, &sample[*split..]);
     let focus = focus(scene, &paths, &agreeing_paths);
     let mut candidates: Vec<Variant> = (Variant::tried())
         .filter(|v| v.kernel() != Some(options.kernel))
@@ -408,7 +409,7 @@ pub(crate) fn with_mask(
     let worth_rendering = || {
         let (sample, split) = &samples[1];
         let (state, changes) =
-            render::path_agreement_at(scene, &probe(options), sample, |k, b| agrees(sample[k], b));
+            super::path_agreement_at(scene, &probe(options), sample, |k, b| agrees(sample[k], b));
         let share = |n: usize, of: usize| n as f64 / of.max(1) as f64;
         let (d_weight, a_weight) = (
             share(differing, *split),
@@ -537,7 +538,7 @@ fn reached(
         return;
     }
     let traced: Vec<usize> = at.clone().filter(|&i| reach.touches(paths[i])).collect();
-    let mut bytes = render::render_pixels(scene, options, &traced).into_iter();
+    let mut bytes = super::render_pixels(scene, options, &traced).into_iter();
     for i in at {
         let pixel = match reach.touches(paths[i]) {
             true => bytes.next().unwrap_or_default(),
@@ -597,7 +598,7 @@ impl Agreeing {
             let mask = differing.iter().map(|&word| !word).collect();
             return Agreeing { mask };
         }
-        let steps = render::Steps::of(rule);
+        let steps = super::Steps::of(rule);
         let reference = (rendered.paths.chunks(64)).zip(rendered.image.pixels.chunks(64));
         let mut mask = Vec::with_capacity(pixels.div_ceil(64));
         for ((paths, bytes), theirs) in reference.zip(student.pixels.chunks(64)) {
@@ -683,7 +684,7 @@ impl Scorer<'_> {
                 // A byte rule alone traces nothing (and sets up no renderer).
                 let bytes = match traced.is_empty() {
                     true => Vec::new(),
-                    false => render::render_pixels(scene, &options, &traced),
+                    false => super::render_pixels(scene, &options, &traced),
                 };
                 let mut next = traced.iter().zip(bytes).peekable();
                 for i in 0..pixels {
@@ -885,7 +886,7 @@ fn stopped_near(scene: &Scene, line: usize) -> Vec<Variant> {
 
 /// The edits of one record on the objects and the lights most involved in the sampled
 /// differing pixels' paths, most involved first.
-fn scoped(scene: &Scene, paths: &[render::Involved]) -> Vec<Variant> {
+fn scoped(scene: &Scene, paths: &[super::Involved]) -> Vec<Variant> {
     let mut objects = vec![0usize; scene.objects.len()];
     let mut lights = vec![0usize; scene.lights.len()];
     for path in paths {
@@ -944,11 +945,7 @@ fn distinct(of: impl Iterator<Item = usize>) -> Vec<usize> {
 /// The object most involved in the sampled differing pixels' paths, and how: each path
 /// counts once for an object, as the camera ray's hit first, else as a shadow's blocker,
 /// else as a mirror ray's hit.
-fn focus(
-    scene: &Scene,
-    paths: &[render::Involved],
-    agreeing: &[render::Involved],
-) -> Option<Focus> {
+fn focus(scene: &Scene, paths: &[super::Involved], agreeing: &[super::Involved]) -> Option<Focus> {
     // Per object: the paths that involve it, then by the camera, a shadow, a mirror.
     let mut counts = vec![[0usize; 4]; scene.objects.len()];
     for path in paths {
@@ -988,10 +985,10 @@ fn focus(
 /// at most [`LIGHT_AGREEING`] of the agreeing ones', the one whose two shares differ most.
 fn light_focus(
     scene: &Scene,
-    differing: &[render::Involved],
-    agreeing: &[render::Involved],
+    differing: &[super::Involved],
+    agreeing: &[super::Involved],
 ) -> Option<LightFocus> {
-    let lit = |paths: &[render::Involved], light: usize| {
+    let lit = |paths: &[super::Involved], light: usize| {
         let n = paths.iter().filter(|p| p.lit_by.contains(&light)).count();
         n as f64 / paths.len().max(1) as f64
     };
@@ -1023,7 +1020,7 @@ pub fn estimate_max_dist(
         return None;
     }
     let probe = probe(options);
-    let (state, changes) = render::path_agreement(scene, &probe, |pixel, bytes| {
+    let (state, changes) = super::path_agreement(scene, &probe, |pixel, bytes| {
         within(bytes, student.pixels[pixel], levels)
     });
     let (d, range, best) = best_max_dist(&state, &changes, |_| 1.0, options.max_dist)?;
@@ -1054,7 +1051,7 @@ fn probe(options: &Options) -> Options {
 /// better than the `current` D.
 fn best_max_dist(
     state: &[bool],
-    changes: &[render::PathChange],
+    changes: &[super::PathChange],
     weight: impl Fn(usize) -> f64,
     current: f64,
 ) -> Option<(f64, [f64; 2], f64)> {

@@ -9,15 +9,26 @@
 
 pub mod causes;
 mod diagnose;
+mod margins;
+mod reach;
 pub mod read;
+mod reference;
+mod retrace;
 pub mod text;
+
+pub use reach::{Paths, Reach};
+pub(crate) use reach::{Steps, packed};
+pub use reference::{FirstHit, Fragility, Mark, render_with_margins, render_with_paths};
+pub use retrace::{
+    Involved, PathChange, involved, path_agreement, path_agreement_at, render_pixels,
+};
 
 pub use diagnose::{
     Diagnosis, Focus, PROBE_LIMIT, diagnose, diagnose_and_focus, estimate_max_dist, roundest,
 };
 pub use read::{ReadError, read_image};
 
-use crate::render::{self, Image, Options};
+use crate::render::{Image, Options};
 use crate::scene::Scene;
 use serde::Serialize;
 
@@ -32,7 +43,7 @@ pub struct Tolerance {
     pub allow: f64,
     /// The relative precision of the arithmetic a correct tracer is granted: where a
     /// decision of the reference came closer than this to going the other way, the
-    /// pixel is fragile and a difference there is excused ([`render::Fragility`]).
+    /// pixel is fragile and a difference there is excused ([`Fragility`]).
     pub precision: f64,
 }
 
@@ -67,10 +78,10 @@ pub struct Reference {
     pub image: Image,
     /// Per pixel, what a correct tracer may get otherwise and the object the camera ray
     /// hits first; empty for an image given as the reference (then no pixel is excused).
-    pub marks: Vec<render::Mark>,
+    pub marks: Vec<Mark>,
     /// Per pixel, what its path involves (rendered for `--diagnose`, else empty): the
-    /// diagnosis re-traces only the pixels a candidate can change ([`render::Reach`]).
-    pub paths: Vec<render::Paths>,
+    /// diagnosis re-traces only the pixels a candidate can change ([`Reach`]).
+    pub paths: Vec<Paths>,
 }
 
 impl Reference {
@@ -84,7 +95,7 @@ impl Reference {
     }
 
     /// Pixel `i`'s fragility (none for an image).
-    pub fn fragility(&self, i: usize) -> render::Fragility {
+    pub fn fragility(&self, i: usize) -> Fragility {
         self.marks.get(i).map(|m| m.fragility()).unwrap_or_default()
     }
 }
@@ -248,7 +259,7 @@ pub fn pixel_difference(a: [u8; 3], b: [u8; 3]) -> u8 {
 #[inline]
 pub(crate) fn within(a: [u8; 3], b: [u8; 3], levels: u8) -> bool {
     match levels {
-        0 => render::packed(a) == render::packed(b),
+        0 => packed(a) == packed(b),
         _ => pixel_difference(a, b) <= levels,
     }
 }
@@ -369,7 +380,7 @@ pub fn reference(
 pub fn reference_at(scene: &Scene, options: &Options, precision: f64, diagnose: bool) -> Reference {
     match diagnose {
         true => {
-            let (image, marks, paths) = render::render_with_paths(scene, options, precision);
+            let (image, marks, paths) = render_with_paths(scene, options, precision);
             Reference {
                 image,
                 marks,
@@ -377,7 +388,7 @@ pub fn reference_at(scene: &Scene, options: &Options, precision: f64, diagnose: 
             }
         }
         false => {
-            let (image, marks) = render::render_with_margins(scene, options, precision);
+            let (image, marks) = render_with_margins(scene, options, precision);
             Reference {
                 image,
                 marks,

@@ -992,10 +992,10 @@ fn max_dist_s_paths_on_a_sample_are_those_of_the_whole_image() {
     // Any rule on the bytes will do: it only has to tell some apart.
     let agrees = |bytes: [u8; 3]| bytes[0] > 100;
     let (state, changes) =
-        legacy_rt::render::path_agreement(&scene, &options, |_, bytes| agrees(bytes));
+        legacy_rt::compare::path_agreement(&scene, &options, |_, bytes| agrees(bytes));
     let sample: Vec<usize> = (0..64 * 48).step_by(7).collect();
     let (state_at, changes_at) =
-        legacy_rt::render::path_agreement_at(&scene, &options, &sample, |_, bytes| agrees(bytes));
+        legacy_rt::compare::path_agreement_at(&scene, &options, &sample, |_, bytes| agrees(bytes));
     assert!(
         changes.len() > 100,
         "the scene's mirrors change bytes as D grows"
@@ -1005,7 +1005,7 @@ fn max_dist_s_paths_on_a_sample_are_those_of_the_whole_image() {
     let on_sample = |i: u32| sample.binary_search(&(i as usize)).is_ok();
     let expected: Vec<_> = changes.iter().filter(|c| on_sample(c.pixel)).collect();
     let got: Vec<_> = (changes_at.iter())
-        .map(|c| legacy_rt::render::PathChange {
+        .map(|c| legacy_rt::compare::PathChange {
             pixel: sample[c.pixel as usize] as u32,
             ..*c
         })

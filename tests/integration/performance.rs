@@ -216,8 +216,9 @@ fn the_room_under_every_variant_renders_as_the_linear_scan() {
 /// it applies to.
 #[test]
 fn spans_give_each_pixels_own_bytes() {
+    use legacy_rt::compare::{render_pixels, render_with_margins};
     use legacy_rt::render::variant::{Scope, check_scopes};
-    use legacy_rt::render::{Stage, VARIANTS, render_pixels, render_with_margins};
+    use legacy_rt::render::{Stage, VARIANTS};
     let (width, height) = (29, 22);
     let every: Vec<usize> = (0..width * height).collect();
     let mut checked = 0;

@@ -35,7 +35,8 @@ fn corpus() -> &'static [String] {
 /// linear scan) and as `compare` renders its reference (with the margins of its fragile
 /// pixels), and checks that all give the same bytes.
 fn render_small(scene: &legacy_rt::Scene) {
-    use legacy_rt::render::{Options, render, render_with_margins};
+    use legacy_rt::compare::render_with_margins;
+    use legacy_rt::render::{Options, render};
     let accelerated = Options::new(8, 6);
     let linear = Options {
         accelerate: false,

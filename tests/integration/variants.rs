@@ -280,11 +280,11 @@ fn a_hidden_plane_hides_nothing_behind_it() {
 /// the reference name that record, and a byte rule only by the steps the paths hold. For
 /// every localisable edit of the first objects and of every light of each scene (and with
 /// round-bytes or scale-256 besides), the image put together from the reference (the
-/// pixels not touched) and from [`render::render_pixels`] (the touched ones) is the
+/// pixels not touched) and from [`compare::render_pixels`] (the touched ones) is the
 /// image rendered whole under the variants.
 #[test]
 fn a_variant_of_one_record_changes_only_the_pixels_whose_paths_name_it() {
-    use legacy_rt::render::{Reach, render_with_paths};
+    use legacy_rt::compare::{Reach, render_with_paths};
     let files = every_scene();
     let object_edits = [
         "hidden",
@@ -341,7 +341,7 @@ fn a_variant_of_one_record_changes_only_the_pixels_whose_paths_name_it() {
             let traced: Vec<usize> = (0..paths.len())
                 .filter(|&i| reach.touches(paths[i]))
                 .collect();
-            let mut bytes = render::render_pixels(&scene, &edited, &traced).into_iter();
+            let mut bytes = legacy_rt::compare::render_pixels(&scene, &edited, &traced).into_iter();
             for (i, &path) in paths.iter().enumerate() {
                 let pixel = match reach.touches(path) {
                     true => bytes.next().unwrap(),
@@ -359,7 +359,7 @@ fn a_variant_of_one_record_changes_only_the_pixels_whose_paths_name_it() {
     assert!(touched_somewhere > checked / 2 && untouched_somewhere > checked / 2);
 }
 
-/// [`render::render_pixels`] gives the whole render's bytes at whichever pixels it is
+/// [`compare::render_pixels`] gives the whole render's bytes at whichever pixels it is
 /// asked for: a block (the tiles it covers get their lists, the others none), pixels
 /// scattered one to a tile (no lists), every pixel; upside down too (rows counted the
 /// other way) and with the first object hidden (a hidden plane hides nothing).
@@ -383,7 +383,7 @@ fn render_pixels_gives_the_renders_bytes_at_any_pixels() {
         for options in options {
             let whole = render::render(&scene, &options, |_| {});
             for pixels in [&block, &scattered, &every] {
-                let bytes = render::render_pixels(&scene, &options, pixels);
+                let bytes = legacy_rt::compare::render_pixels(&scene, &options, pixels);
                 for (&i, &b) in pixels.iter().zip(&bytes) {
                     assert_eq!(b, whole.pixels[i], "{}: pixel {i}", path.display());
                 }
@@ -400,13 +400,13 @@ fn geometry_variants_claim_no_reach() {
     for object in &scene.objects {
         for edit in ["nearer-root", "cone-scale", "no-z-rule"] {
             if let Ok(variant) = Variant::parse(&format!("{edit}@{}", object.line)) {
-                assert_eq!(render::Reach::of(&scene, &[], &[variant]), None);
+                assert_eq!(legacy_rt::compare::Reach::of(&scene, &[], &[variant]), None);
             }
         }
     }
     for variant in Variant::all().filter(|v| v.row().site != render::variant::Site::Bytes) {
         assert_eq!(
-            render::Reach::of(&scene, &[], &[variant]),
+            legacy_rt::compare::Reach::of(&scene, &[], &[variant]),
             None,
             "{}",
             variant.id()

@@ -36,8 +36,8 @@
 //! times its distance, is heard (at most [`MARGIN_REACH`]).
 
 use super::reach::Paths;
-use super::record::{Event, LightStep, MARGIN_REACH, Recorder};
-use super::shading::{PatternNote, Screen};
+use crate::render::record::{Event, LightStep, MARGIN_REACH, Recorder};
+use crate::render::shading::{PatternNote, Screen};
 use crate::scene::{Pattern, Scene, Shader, TextureMode};
 use crate::shapes::{HitNote, Ray, Shape};
 use glam::DVec3;
@@ -171,7 +171,7 @@ pub(crate) struct Margins<'s, 'a, const PATHS: bool> {
     surest_blocker: f64,
     /// The nearest unblocking decision's margin (shadow rays).
     nearest_miss: f64,
-    /// What the path involves, for `compare --diagnose` (src/render/reach.rs).
+    /// What the path involves, for `compare --diagnose` (src/compare/reach.rs).
     pub(crate) paths: Paths,
     /// The error the current ray carries, in units of the precision: how far its base may
     /// be off (a length) and its direction (an angle). A camera ray's are its base's size

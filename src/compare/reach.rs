@@ -17,8 +17,8 @@
 //! change any pixel.
 
 #[cfg(doc)]
-use super::variant::Bytes;
-use super::variant::{Kind, Site, Variant};
+use crate::render::variant::Bytes;
+use crate::render::variant::{Kind, Site, Variant};
 use crate::scene::Scene;
 use glam::DVec3;
 
@@ -235,7 +235,7 @@ mod tests {
 
     #[test]
     fn the_steps_agree_with_the_byte_rules_everywhere() {
-        use super::super::variant::Bytes;
+        use crate::render::variant::Bytes;
         // Every byte's edges and middles, and what lies outside [0, 1].
         let mut channels: Vec<f64> = (0..=256)
             .flat_map(|k| {
