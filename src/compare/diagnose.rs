@@ -25,7 +25,7 @@
 
 use super::Reach;
 use super::{Reference, within};
-use crate::render::variant::{Row, Scope};
+use crate::render::variant::{Row, Scope, output_row};
 use crate::render::{self, Image, Kind, Options, VARIANTS, Variant};
 use crate::scene::{Material, Object, Pattern, Scene};
 use crate::shapes::Shape;
@@ -571,7 +571,7 @@ fn uncovered(variants: &[Variant], width: usize, height: usize) -> impl Fn(usize
             return false;
         }
         let (x, r) = (i % width.max(1), i / width.max(1));
-        (rows != 0 && beyond(height - 1 - r.min(height - 1), rows, height))
+        (rows != 0 && beyond(output_row(r.min(height - 1), height, false), rows, height))
             || (columns != 0 && beyond(x, columns, width))
     }
 }

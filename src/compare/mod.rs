@@ -28,6 +28,7 @@ pub use diagnose::{
 };
 pub use read::{ReadError, read_image};
 
+use crate::render::variant::output_row;
 use crate::render::{Image, Options};
 use crate::scene::Scene;
 use serde::Serialize;
@@ -404,7 +405,7 @@ pub fn reference_at(scene: &Scene, options: &Options, precision: f64, diagnose: 
 /// ([`text::trace_command`] applies it: `--variant upside-down` moves it).
 pub fn pixel_at(i: usize, width: usize, height: usize) -> [usize; 2] {
     let width = width.max(1);
-    [i % width, height - 1 - i / width]
+    [i % width, output_row(i / width, height, false)]
 }
 
 /// Compares `student` with `reference`; with the scene (and the options the reference

@@ -3,6 +3,7 @@
 
 use super::{Report, Verdict};
 use crate::Options;
+use crate::render::variant::output_row;
 use crate::render::{Choices, Variant};
 
 /// `path` as a shell word: as it is when it needs no quoting, in single quotes when it
@@ -44,7 +45,8 @@ pub fn trace_command(
     y: usize,
 ) -> String {
     let (w, h) = (options.width, options.height);
-    let y = options.row_of(h - 1 - y.min(h - 1));
+    // The output row that holds (x, y), then the pixel row traced there.
+    let y = options.row_of(output_row(y.min(h - 1), h, false));
     let flags = choices.flags();
     format!(
         "legacy-rt trace {x} {y} {w} {h}{flags} < {}",
