@@ -31,11 +31,12 @@
 //! decisions count when it wins, or when what it decides lies no further than the winner
 //! (a miss that nearly hit in front of it); a shadow is as sure as its surest blocker,
 //! and an unblocked light as its nearest miss. The queries go on testing objects a little
-//! past their answer for this recorder ([`Recorder::reach`]): 64 times the precision, so
+//! past their answer for this recorder ([`Sizes::query`]): 64 times the precision, so
 //! that what lies that close behind the answer, measured on a point of size up to 64
 //! times its distance, is heard (at most [`MARGIN_REACH`]).
 
 use super::reach::Paths;
+use crate::render::Near;
 use crate::render::record::{Event, LightStep, MARGIN_REACH, Recorder};
 use crate::render::shading::{PatternNote, Screen};
 use crate::scene::{Pattern, Scene, Shader, TextureMode};
@@ -49,7 +50,7 @@ pub(crate) struct Sizes<'a> {
     facts: Vec<Facts>,
     max_dist: f64,
     screen: Screen,
-    /// How far past their answer the queries test objects ([`Recorder::reach`]); margins
+    /// How far past their answer the queries test objects ([`Sizes::query`]); margins
     /// beyond it are not kept.
     reach: f64,
     /// The closest hits' decisions whose margins clear the reach.
@@ -81,6 +82,12 @@ impl Cutoff {
 }
 
 impl<'a> Sizes<'a> {
+    /// The query the margins need of the renderer: the answer and every object within
+    /// the reach of changing it, with each test's decisions.
+    pub(crate) fn query(&self) -> Near {
+        Near(self.reach)
+    }
+
     pub(crate) fn new(
         scene: &'a Scene,
         max_dist: f64,
@@ -500,10 +507,6 @@ impl<'s, 'a, const PATHS: bool> Margins<'s, 'a, PATHS> {
 }
 
 impl<const PATHS: bool> Recorder for Margins<'_, '_, PATHS> {
-    const ON: bool = true;
-    const EVERY_OBJECT: bool = false;
-    const NOTES: bool = true;
-
     #[inline(always)]
     fn record(&mut self, event: impl FnOnce() -> Event) {
         match event() {
@@ -618,10 +621,6 @@ impl<const PATHS: bool> Recorder for Margins<'_, '_, PATHS> {
     fn settled(&self) -> bool {
         self.surest_blocker >= self.sizes.reach
     }
-
-    fn reach(&self) -> f64 {
-        self.sizes.reach
-    }
 }
 
 #[cfg(test)]
@@ -651,7 +650,7 @@ mod tests {
         let ray = setup.camera.ray(1, 1).expect("a ray");
         assert_eq!((ray.base, ray.dir), (DVec3::new(0.0, 0.0, 3.0), -DVec3::Z));
         let mut rec = Margins::<false>::new(&sizes);
-        tracer.pixel::<Accurate>(1, 1, &mut rec);
+        tracer.pixel::<Accurate>(1, 1, sizes.query(), &mut rec);
         rec.least
     }
 

@@ -122,7 +122,7 @@ pub fn render_with_margins(scene: &Scene, options: &Options, precision: f64) -> 
 }
 
 /// [`render_with_margins`], and each pixel's [`Paths`]: what `compare --diagnose` needs
-/// to re-trace only the pixels a variant can change ([`Reach`]).
+/// to re-trace only the pixels a variant can change ([`Reach`](super::Reach)).
 pub fn render_with_paths(
     scene: &Scene,
     options: &Options,
@@ -187,7 +187,7 @@ fn margins_of<const PATHS: bool, B: Rulebook>(
     with_kernel!(options.kernel, K => {
         let per_pixel = |x: usize, y: usize| -> Mark {
             let mut rec = margins::Margins::<PATHS>::new(&sizes);
-            let colour = tracer.pixel::<K>(x, y, &mut rec);
+            let colour = tracer.pixel::<K>(x, y, sizes.query(), &mut rec);
             // The colour is some sixteen roundings from the hit point: ambient plus each
             // light's diffuse × emissivity × cos θ / dist, over the path, times the
             // mirrors.

@@ -7,15 +7,16 @@ use crate::render::record::{Event, LightStep, Recorder};
 use crate::render::tiles;
 use crate::render::tracer::Tracer;
 use crate::render::variant::{Rulebook, Rules};
-use crate::render::{Options, Setup, each_pixel};
+use crate::render::{Options, Plain, Setup, each_pixel};
 use crate::scene::Scene;
 use crate::shapes::kernel::{Kernel, with_kernel};
 use glam::DVec3;
 
 /// The bytes of the pixels `indices` (output order: row 0 at the top) of the scene's
-/// image under `options`, without the rest: the same bytes as [`render`] gives there. For
-/// `compare --diagnose`, which tries a variant on a sample of pixels, and re-traces the
-/// pixels a variant can change, rather than render whole images. The camera rays go
+/// image under `options`, without the rest: the same bytes as
+/// [`render`](crate::render::render) gives there. For `compare --diagnose`, which tries
+/// a variant on a sample of pixels, and re-traces the pixels a variant can change,
+/// rather than render whole images. The camera rays go
 /// through the lists of the tiles the pixels fall in where they are dense enough to pay
 /// for them (`PIXELS_PER_LIST`, 8 a tile); the hierarchy is kept. Where shadow rays are
 /// cast, the pixels that follow each other in `indices` within one row of one tile are
@@ -173,9 +174,6 @@ pub struct Involved {
 }
 
 impl Recorder for Involved {
-    const ON: bool = true;
-    const EVERY_OBJECT: bool = false;
-
     fn record(&mut self, event: impl FnOnce() -> Event) {
         match event() {
             Event::Closest {
@@ -208,7 +206,7 @@ impl Recorder for Involved {
 pub fn involved(scene: &Scene, options: &Options, indices: &[usize]) -> Vec<Involved> {
     at_pixels(scene, options, indices, |_, tracer, _, x, y| {
         let mut path = Involved::default();
-        with_kernel!(options.kernel, K => tracer.pixel::<K>(x, y, &mut path));
+        with_kernel!(options.kernel, K => tracer.pixel::<K>(x, y, Plain, &mut path));
         path
     })
 }
@@ -295,8 +293,6 @@ fn path_changes<B: Rulebook>(
     /// Each segment's start and the colour after it.
     struct Path(Vec<(f64, DVec3)>);
     impl Recorder for Path {
-        const ON: bool = true;
-        const EVERY_OBJECT: bool = false;
         fn record(&mut self, event: impl FnOnce() -> Event) {
             match event() {
                 Event::Segment { total_dist, .. } => {
@@ -313,7 +309,7 @@ fn path_changes<B: Rulebook>(
         }
     }
     let mut path = Path(Vec::new());
-    with_kernel!(options.kernel, K => tracer.pixel::<K>(x, y, &mut path));
+    with_kernel!(options.kernel, K => tracer.pixel::<K>(x, y, Plain, &mut path));
     let bytes = |colour: DVec3| setup.rules.bytes(colour);
     let mut entries = path.0.iter();
     let first = entries.next().map_or(DVec3::ZERO, |&(_, c)| c);

@@ -21,6 +21,7 @@ pub(crate) mod tracer;
 pub mod variant;
 
 pub use choices::{Choices, by_name, size_problem};
+pub(crate) use objects::{EveryObject, Near, Plain};
 pub use record::{Event, LightStep, Skip, Stats};
 pub use shading::PatternNote;
 pub use stage::{Show, Stage};
@@ -326,7 +327,7 @@ pub fn count_rays(scene: &Scene, options: &Options) -> Stats {
     let tracer = setup.tracer(options);
     let count = |x: usize, y: usize| -> Stats {
         let mut stats = Stats::default();
-        with_kernel!(options.kernel, K => tracer.pixel::<K>(x, y, &mut stats));
+        with_kernel!(options.kernel, K => tracer.pixel::<K>(x, y, Plain, &mut stats));
         stats
     };
     let per_pixel = each_pixel(&setup, options, count, &mut |_| {});
@@ -438,7 +439,7 @@ fn in_bands<T: Send>(
 pub fn ray_trace(scene: &Scene, options: &Options, ray: Ray) -> DVec3 {
     let setup = Setup::new(scene, options);
     let tracer = Tracer::new(&setup.scene, &setup.rules, options, &setup.camera, None);
-    with_kernel!(options.kernel, K => tracer.through::<K>(ray, &mut ()))
+    with_kernel!(options.kernel, K => tracer.through::<K>(ray, Plain, &mut ()))
 }
 
 /// A distinct, stable colour for object `index` in `--show objects`: the golden-ratio

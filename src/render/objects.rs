@@ -26,6 +26,57 @@ use crate::shapes::kernel::Kernel;
 use crate::shapes::{HitNote, Notes, Ray, clearly_no_root, discriminant_note};
 use crate::threads::Threads;
 
+/// How a query of the aggregate is answered: the caller's choice, an explicit value
+/// ([`Plain`], [`EveryObject`] or [`Near`]), never the recorder's. The answer is the same
+/// in every mode; what differs is which objects are tested and what the recorder hears.
+pub(crate) trait Query: Copy {
+    /// Whether every object is tested in file order with its reasons, as the course's
+    /// program tested them (the readable trace), instead of through the tiles and the
+    /// hierarchy.
+    const EVERY_OBJECT: bool = false;
+
+    /// Whether the shapes' decisions are told to the recorder for every object tested
+    /// ([`Recorder::tested`]), also where the tiles and the hierarchy choose which.
+    const NOTES: bool = Self::EVERY_OBJECT;
+
+    /// How far past its answer (the best hit, or the light) the query goes on testing
+    /// objects, as a share of the distance.
+    #[inline(always)]
+    fn reach(self) -> f64 {
+        0.0
+    }
+}
+
+/// The answer alone, the quickest way: the tiles' lists and the hierarchy.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Plain;
+
+impl Query for Plain {}
+
+/// Every object in file order, each test's decisions told: a trace.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct EveryObject;
+
+impl Query for EveryObject {
+    const EVERY_OBJECT: bool = true;
+}
+
+/// The answer, and every object that comes within the reach (a share of the distance,
+/// at most [`MARGIN_REACH`](super::record::MARGIN_REACH)) of changing it, each test's decisions told: the margins of
+/// `compare`'s fragile pixels. A shadow query goes on past its first blocker until the
+/// recorder is sure of one ([`Recorder::settled`]).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Near(pub(crate) f64);
+
+impl Query for Near {
+    const NOTES: bool = true;
+
+    #[inline(always)]
+    fn reach(self) -> f64 {
+        self.0
+    }
+}
+
 /// The closest hit of a ray: the object's index among the scene's objects, and t.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Hit {
@@ -139,10 +190,11 @@ impl<'a, B: Rulebook> Objects<'a, B> {
     /// The closest object hit along `ray` with t > 0, skipping the one it leaves; ties go
     /// to the earlier object (spec §4.6). `K` is the render's kernel.
     #[inline(always)]
-    pub(crate) fn closest<K: Kernel, R: Recorder>(
+    pub(crate) fn closest<K: Kernel, Q: Query, R: Recorder>(
         &self,
         ray: &Ray,
         from: From,
+        query: Q,
         rec: &mut R,
     ) -> Option<Hit> {
         let (skip, least) = self.leaving(from);
@@ -152,29 +204,30 @@ impl<'a, B: Rulebook> Objects<'a, B> {
         // inlined always: a closure called from three loops may not be, and for the
         // camera rays its call cost the plain render some 3 % (the ambient plane).
         let counts = |index: usize, t: f64| self.counts(index, ray, t, least);
-        let test = |index: usize, rec: &mut R| self.closest_test::<K, R>(index, skip, ray, rec);
-        // A recorder of margins is told of the objects that come near the best hit too.
-        let slack = 1.0 + rec.reach();
+        let test =
+            |index: usize, rec: &mut R| self.closest_test::<K, Q, R>(index, skip, ray, query, rec);
+        // A query of margins tests the objects that come near the best hit too.
+        let slack = 1.0 + query.reach();
         let mut best: Option<(usize, f64)> = None;
         let tile = match from {
             From::Eye(tile) => tile,
             From::Surface(_) => None,
         };
-        if let Some(tile) = tile.filter(|_| !R::EVERY_OBJECT) {
+        if let Some(tile) = tile.filter(|_| !Q::EVERY_OBJECT) {
             // Near to far: past the best hit so far, nothing can win or tie.
             for &index in tile.objects {
                 let index = index as usize;
                 if best.is_some_and(|(_, t)| tile.nearest[index] > t * slack) {
                     break;
                 }
-                if let Some(t) = self.closest_test::<K, R>(index, skip, ray, rec)
+                if let Some(t) = self.closest_test::<K, Q, R>(index, skip, ray, query, rec)
                     && beats(best, index, t)
                     && self.counts(index, ray, t, least)
                 {
                     best = Some((index, t));
                 }
             }
-        } else if let Some(bvh) = self.bvh.as_ref().filter(|_| !R::EVERY_OBJECT) {
+        } else if let Some(bvh) = self.bvh.as_ref().filter(|_| !Q::EVERY_OBJECT) {
             best = bvh.closest(ray, |index| test(index, rec), counts, slack);
         } else {
             in_file_order(objects.len(), skip, out, rec, |index, rec| {
@@ -208,28 +261,30 @@ impl<'a, B: Rulebook> Objects<'a, B> {
     /// `object`'s t along `ray` for [`Objects::closest`]: none for an object out of its
     /// tests ([`Objects::out_of_closest`]).
     #[inline(always)]
-    fn closest_test<K: Kernel, R: Recorder>(
+    fn closest_test<K: Kernel, Q: Query, R: Recorder>(
         &self,
         index: usize,
         skip: Option<usize>,
         ray: &Ray,
+        query: Q,
         rec: &mut R,
     ) -> Option<f64> {
         if self.out_of_closest(index, skip) {
             return None;
         }
-        test_and_record::<K, R>(index, &self.scene.objects[index], ray, rec)
+        test_and_record::<K, Q, R>(index, &self.scene.objects[index], ray, query, rec)
     }
 
     /// Whether an object lies on `ray` (leaving object `from`) closer than `dist`, blocking
     /// the light (spec §4.3); the recorder is told which, the first in file order for a
     /// trace. `K` is the render's kernel.
     #[inline(always)]
-    pub(crate) fn blocked<K: Kernel, R: Recorder>(
+    pub(crate) fn blocked<K: Kernel, Q: Query, R: Recorder>(
         &self,
         ray: &Ray,
         from: usize,
         dist: f64,
+        query: Q,
         rec: &mut R,
     ) -> bool {
         let (skip, least) = self.leaving(From::Surface(from));
@@ -239,12 +294,12 @@ impl<'a, B: Rulebook> Objects<'a, B> {
         let dist = self.rules.far().map_or(dist, |far| dist.min(far));
         let blocks =
             |index: usize, t: f64| t > least && t < dist && self.boxes.admits(index, ray, t);
-        // A recorder of margins hears of blockers until one is sure: the shadow is as
-        // sure as the surest of them.
-        let every_blocker = margins::<R>();
+        // A query of margins tests blockers until the recorder is sure of one: the
+        // shadow is as sure as the surest of them.
+        let every_blocker = margins::<Q>();
         let mut blocker = None;
         let mut test = |index: usize, rec: &mut R| {
-            if let Some(t) = test_and_record::<K, R>(index, &objects[index], ray, rec)
+            if let Some(t) = test_and_record::<K, Q, R>(index, &objects[index], ray, query, rec)
                 && blocks(index, t)
                 && blocker.is_none()
             {
@@ -252,8 +307,8 @@ impl<'a, B: Rulebook> Objects<'a, B> {
             }
             blocker.is_some() && (!every_blocker || rec.settled())
         };
-        if let Some(bvh) = self.bvh.as_ref().filter(|_| !R::EVERY_OBJECT) {
-            let limit = dist * (1.0 + rec.reach());
+        if let Some(bvh) = self.bvh.as_ref().filter(|_| !Q::EVERY_OBJECT) {
+            let limit = dist * (1.0 + query.reach());
             bvh.any(ray, limit, |index| !out(index) && test(index, rec));
         } else {
             in_file_order(objects.len(), skip, out, rec, test);
@@ -288,11 +343,11 @@ fn in_file_order<R: Recorder>(
     }
 }
 
-/// Whether `R` is a recorder of margins: the shapes' decisions wanted where the tiles and
-/// the hierarchy choose the objects (`Recorder::NOTES` without `EVERY_OBJECT`).
+/// Whether `Q` is a query of margins: the shapes' decisions wanted where the tiles and
+/// the hierarchy choose the objects (`Query::NOTES` without `EVERY_OBJECT`).
 #[inline(always)]
-fn margins<R: Recorder>() -> bool {
-    R::NOTES && !R::EVERY_OBJECT
+fn margins<Q: Query>() -> bool {
+    Q::NOTES && !Q::EVERY_OBJECT
 }
 
 /// Why an object was not tested: the ray leaves it, or a variant took it out.
@@ -303,25 +358,28 @@ fn skipped(leaves: bool) -> Skip {
     }
 }
 
-/// `object`'s t along `ray`, told to `rec` with the shape's reasons when it wants them.
+/// `object`'s t along `ray`, told to `rec` with the shape's reasons where the query wants
+/// them.
 #[inline(always)]
-fn test_and_record<K: Kernel, R: Recorder>(
+fn test_and_record<K: Kernel, Q: Query, R: Recorder>(
     index: usize,
     object: &Object,
     ray: &Ray,
+    query: Q,
     rec: &mut R,
 ) -> Option<f64> {
-    if !R::NOTES {
+    if !Q::NOTES {
         return object.shape.hit_by::<K>(ray, &mut ());
     }
     let mut notes = Few::default();
-    // A recorder of margins is told how close the ray came to touching a quadric. Where
-    // it clearly misses and the kernel's quick test agrees, the recorder (whose margins
+    // A query of margins tells how close the ray came to touching a quadric. Where it
+    // clearly misses and the kernel's quick test agrees, the recorder (whose margins
     // reach no further) is not told, and the kernel's notes are not taken.
-    if margins::<R>()
+    if margins::<Q>()
         && let Some((a, b, c)) = object.shape.quadratic(ray)
     {
-        if clearly_no_root(a, b, c, rec.reach()) && object.shape.hit_by::<K>(ray, &mut ()).is_none()
+        if clearly_no_root(a, b, c, query.reach())
+            && object.shape.hit_by::<K>(ray, &mut ()).is_none()
         {
             return None;
         }

@@ -1,6 +1,9 @@
 //! What the tracer tells as it works: one [`Event`] per step of spec §4, to a
-//! [`Recorder`]. The plain render's recorder is `()`: its `ON` is false, so every
-//! recording call compiles away and the render pays nothing for them. `legacy-rt trace`
+//! [`Recorder`]. The plain render's recorder is `()`, whose `record` does nothing and is
+//! inlined, so every recording call compiles away and the render pays nothing for them
+//! (the recorder is a type parameter rather than a run-time flag: docs/architecture.md
+//! says what that saves). Which objects a query tests is not the recorder's to say: the
+//! caller gives the query ([`Query`](super::objects::Query)). `legacy-rt trace`
 //! keeps every event (`Vec<Event>`), and `compare` keeps what it needs of them.
 
 use super::shading::PatternNote;
@@ -11,41 +14,17 @@ use glam::DVec3;
 
 /// Where the tracer tells what it computes.
 pub(crate) trait Recorder {
-    /// Whether events are wanted at all. The recorder of a plain render has none, and a
-    /// type parameter rather than a run-time flag keeps its calls out of the render: the
-    /// one generic the tracer keeps (docs/architecture.md says what it saves).
-    const ON: bool;
-
-    /// Whether every object is tested in file order with its reasons, as the course's
-    /// program tested them (the readable trace), instead of through the tiles and the
-    /// hierarchy (the same answers).
-    const EVERY_OBJECT: bool = Self::ON;
-
-    /// Whether the shapes' decisions are wanted for every object tested
-    /// ([`Recorder::tested`]), also where the tiles and the hierarchy choose which: the
-    /// margins of `compare`'s fragile pixels. The queries then go on testing objects
-    /// within [`Recorder::reach`] of their answer.
-    const NOTES: bool = Self::EVERY_OBJECT;
-
-    /// How far past its answer (the best hit, or the light) a query goes on testing
-    /// objects for this recorder, as a share of the distance: 0 but for a recorder of
-    /// margins, which must hear of every object that comes that close to deciding
-    /// otherwise (at most [`MARGIN_REACH`]).
-    fn reach(&self) -> f64 {
-        0.0
-    }
-
     /// Takes one event; `event` is called only by a recorder that keeps it.
     fn record(&mut self, event: impl FnOnce() -> Event);
 
-    /// Whether the shadow query under way is decided for this recorder: a recorder of
-    /// margins hears of blockers until one is sure.
+    /// Whether the shadow query under way is decided for this recorder, under a query of
+    /// margins ([`Near`](super::objects::Near)), which tests blockers until one is sure.
     fn settled(&self) -> bool {
         true
     }
 
-    /// Takes one object's test: its t and the shape's decisions (wanted when
-    /// [`Recorder::NOTES`]).
+    /// Takes one object's test: its t and the shape's decisions (told where the query
+    /// wants them, [`Query::NOTES`](super::objects::Query::NOTES)).
     fn tested(&mut self, object: usize, t: Option<f64>, notes: &[HitNote]) {
         self.record(|| Event::Tested {
             object,
@@ -60,15 +39,11 @@ pub(crate) trait Recorder {
 pub(crate) const MARGIN_REACH: f64 = 1e-2;
 
 impl Recorder for () {
-    const ON: bool = false;
-
     #[inline(always)]
     fn record(&mut self, _: impl FnOnce() -> Event) {}
 }
 
 impl Recorder for Vec<Event> {
-    const ON: bool = true;
-
     fn record(&mut self, event: impl FnOnce() -> Event) {
         self.push(event());
     }
@@ -247,9 +222,6 @@ impl std::ops::Add for Stats {
 }
 
 impl Recorder for Stats {
-    const ON: bool = true;
-    const EVERY_OBJECT: bool = false;
-
     fn record(&mut self, event: impl FnOnce() -> Event) {
         match event() {
             Event::Segment { depth, .. } if depth > 0 => self.reflected += 1,

@@ -10,7 +10,7 @@
 use super::record::{Event, LightStep, Skip};
 use super::tracer::Tracer;
 use super::variant::Rules;
-use super::{Options, Setup};
+use super::{EveryObject, Options, Plain, Setup};
 use crate::render::shading::PatternNote;
 use crate::scene::Scene;
 use crate::scene::dump::number;
@@ -94,7 +94,7 @@ impl Tracing<'_> {
     pub fn bytes_through(&self, world: DVec3) -> [u8; 3] {
         let colour = match self.setup.camera.ray_through(world) {
             Some(ray) => {
-                with_kernel!(self.options.kernel, K => self.tracer.through::<K>(ray, &mut ()))
+                with_kernel!(self.options.kernel, K => self.tracer.through::<K>(ray, Plain, &mut ()))
             }
             None => DVec3::ZERO,
         };
@@ -108,7 +108,9 @@ impl Tracing<'_> {
         let mut events = Vec::new();
         let kernel = self.options.kernel;
         let colour = match self.setup.camera.ray_through(world) {
-            Some(ray) => with_kernel!(kernel, K => self.tracer.through::<K>(ray, &mut events)),
+            Some(ray) => {
+                with_kernel!(kernel, K => self.tracer.through::<K>(ray, EveryObject, &mut events))
+            }
             None => DVec3::ZERO,
         };
         Trace {

@@ -7,7 +7,7 @@
 //! together ([`Tracer::span`], the plain render where shadow rays are cast), each step
 //! across the span before the next.
 
-use super::objects::{From, Hit, Objects};
+use super::objects::{From, Hit, Objects, Plain, Query};
 use super::record::{Event, LightStep, Recorder};
 use super::shading::{Screen, material_and_pattern};
 use super::stage::{Show, Stage};
@@ -98,9 +98,15 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
     /// render's kernel, chosen by the caller once per render (`with_kernel!`) so that
     /// the tracer's queries run in loops compiled for it.
     #[inline(always)]
-    pub(crate) fn pixel<K: Kernel>(&self, x: usize, y: usize, rec: &mut impl Recorder) -> DVec3 {
+    pub(crate) fn pixel<K: Kernel>(
+        &self,
+        x: usize,
+        y: usize,
+        query: impl Query,
+        rec: &mut impl Recorder,
+    ) -> DVec3 {
         match self.camera.ray(x, y) {
-            Some(ray) => self.along::<K>(ray, self.objects.tile(x, y), rec),
+            Some(ray) => self.along::<K>(ray, self.objects.tile(x, y), query, rec),
             None => DVec3::ZERO,
         }
     }
@@ -108,8 +114,13 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
     /// The colour along `ray` from the eye, through any point of the screen (a trace's,
     /// a sample inside a pixel), every object tested.
     #[inline(always)]
-    pub(crate) fn through<K: Kernel>(&self, ray: Ray, rec: &mut impl Recorder) -> DVec3 {
-        self.along::<K>(ray, None, rec)
+    pub(crate) fn through<K: Kernel>(
+        &self,
+        ray: Ray,
+        query: impl Query,
+        rec: &mut impl Recorder,
+    ) -> DVec3 {
+        self.along::<K>(ray, None, query, rec)
     }
 
     /// Whether pixel (x, y)'s tile sees no object: every pixel of it is the background,
@@ -163,7 +174,7 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
         if !TOGETHER || self.show.is_some() {
             for i in 0..count {
                 let colour = match rays(i) {
-                    Some(ray) => self.along::<K>(ray, tile, &mut ()),
+                    Some(ray) => self.along::<K>(ray, tile, Plain, &mut ()),
                     None => DVec3::ZERO,
                 };
                 out(i, colour);
@@ -172,7 +183,7 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
         }
         let mut colours = [DVec3::ZERO; TILE];
         let rays = |i: usize| (i < count).then(|| rays(i)).flatten();
-        self.trace::<K, (), TILE>(rays, tile, &mut [(); TILE], &mut colours);
+        self.trace::<K, _, (), TILE>(rays, tile, Plain, &mut [(); TILE], &mut colours);
         for (i, colour) in colours.into_iter().enumerate().take(count) {
             out(i, colour);
         }
@@ -180,14 +191,21 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
 
     /// The colour along a camera ray, with its tile's list where it has one.
     #[inline(always)]
-    fn along<K: Kernel>(&self, ray: Ray, tile: Option<Tile>, rec: &mut impl Recorder) -> DVec3 {
+    fn along<K: Kernel>(
+        &self,
+        ray: Ray,
+        tile: Option<Tile>,
+        query: impl Query,
+        rec: &mut impl Recorder,
+    ) -> DVec3 {
         match self.show {
             None => {
                 let mut colour = [DVec3::ZERO];
-                self.trace::<K, _, 1>(|_| Some(ray), tile, std::array::from_mut(rec), &mut colour);
+                let recs = std::array::from_mut(rec);
+                self.trace::<K, _, _, 1>(|_| Some(ray), tile, query, recs, &mut colour);
                 colour[0]
             }
-            Some(show) => self.show::<K>(ray, show, From::Eye(tile), rec),
+            Some(show) => self.show::<K>(ray, show, From::Eye(tile), query, rec),
         }
     }
 
@@ -202,10 +220,11 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
     /// one lane compiles to about the instructions of a loop over one ray
     /// (docs/architecture.md gives the figures).
     #[inline(always)]
-    pub(crate) fn trace<K: Kernel, R: Recorder, const N: usize>(
+    pub(crate) fn trace<K: Kernel, Q: Query, R: Recorder, const N: usize>(
         &self,
         rays: impl Fn(usize) -> Option<Ray>,
         tile: Option<Tile>,
+        query: Q,
         recs: &mut [R; N],
         out: &mut [DVec3; N],
     ) {
@@ -242,7 +261,7 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
                     None => From::Eye(tile),
                     Some(object) => From::Surface(object),
                 };
-                let closest = self.objects.closest::<K, _>(&p.ray, from, rec);
+                let closest = self.objects.closest::<K, _, _>(&p.ray, from, query, rec);
                 rec.record(|| Event::Closest {
                     hit: closest.map(|h| (h.object, h.t)),
                 });
@@ -270,7 +289,7 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
             // 5. Every light's diffuse term.
             if self.stage.lights() {
                 for (light, lamp) in self.scene.lights.iter().enumerate() {
-                    self.diffuse::<K, R, N>(light, lamp, &mut hits, recs);
+                    self.diffuse::<K, Q, R, N>(light, lamp, &mut hits, query, recs);
                 }
             }
             for lane in 0..N {
@@ -314,11 +333,12 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
     /// blocks the shadow ray. Every hit's direction to the light, then the shadow rays,
     /// then the terms.
     #[inline(always)]
-    fn diffuse<K: Kernel, R: Recorder, const N: usize>(
+    fn diffuse<K: Kernel, Q: Query, R: Recorder, const N: usize>(
         &self,
         light: usize,
         lamp: &Light,
         hits: &mut [Option<Lit>; N],
+        query: Q,
         recs: &mut [R; N],
     ) {
         let rules = self.rules.light(light);
@@ -333,7 +353,7 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
         }
         for lane in 0..N {
             if let (Some(h), Some(to)) = (&hits[lane], &towards[lane])
-                && self.shadowed::<K>(rules, h.object, to, &mut recs[lane])
+                && self.shadowed::<K>(rules, h.object, to, query, &mut recs[lane])
             {
                 towards[lane] = None;
             }
@@ -447,6 +467,7 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
         rules: LightRules,
         object: usize,
         towards: &Towards,
+        query: impl Query,
         rec: &mut impl Recorder,
     ) -> bool {
         if !self.stage.shadows() || rules.unshadowed() {
@@ -455,7 +476,7 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
         let shadow = &towards.shadow;
         rec.record(|| Event::Light(LightStep::ShadowRay { ray: *shadow }));
         self.objects
-            .blocked::<K, _>(shadow, object, towards.dist, rec)
+            .blocked::<K, _, _>(shadow, object, towards.dist, query, rec)
     }
 
     /// What step 6 of spec §4.2 divides by: the path's length, or under a variant this
@@ -477,13 +498,20 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
     }
 
     /// The diagnostic image of `show` at the first hit along `ray`.
-    fn show<K: Kernel>(&self, ray: Ray, show: Show, from: From, rec: &mut impl Recorder) -> DVec3 {
+    fn show<K: Kernel>(
+        &self,
+        ray: Ray,
+        show: Show,
+        from: From,
+        query: impl Query,
+        rec: &mut impl Recorder,
+    ) -> DVec3 {
         rec.record(|| Event::Segment {
             depth: 0,
             ray,
             total_dist: 0.0,
         });
-        let hit = self.objects.closest::<K, _>(&ray, from, rec);
+        let hit = self.objects.closest::<K, _, _>(&ray, from, query, rec);
         rec.record(|| Event::Closest {
             hit: hit.map(|h| (h.object, h.t)),
         });
