@@ -7,7 +7,7 @@ use crate::render::record::{Event, LightStep, Recorder};
 use crate::render::tiles;
 use crate::render::tracer::Tracer;
 use crate::render::variant::{Rulebook, Rules};
-use crate::render::{Options, Plain, Setup, each_pixel};
+use crate::render::{Forced, Options, Override, Plain, Setup, each_pixel};
 use crate::scene::Scene;
 use crate::shapes::kernel::{Kernel, with_kernel};
 use glam::DVec3;
@@ -62,6 +62,23 @@ fn spans_of<K: Kernel, const TOGETHER: bool>(
         tracer.span::<K, TOGETHER>(|i| xs[i], y, count, bytes);
     }
     pixels
+}
+
+/// The bytes of the pixels `indices` (output order) with the decisions `overrides` forced
+/// on every pixel's path: the image the scene would give there were an object missed by
+/// one kind of ray, or a light's shadow test decided ([`Override`]). What a diagnosis
+/// tries where no variant explains a student's pixels.
+pub fn render_forced(
+    scene: &Scene,
+    options: &Options,
+    indices: &[usize],
+    overrides: &[Override],
+) -> Vec<[u8; 3]> {
+    let query = Forced::new(overrides);
+    at_pixels(scene, options, indices, |_, tracer, _, x, y| {
+        let colour = with_kernel!(options.kernel, K => tracer.pixel::<K>(x, y, query, &mut ()));
+        tracer.bytes(colour)
+    })
 }
 
 /// How many of the pixels to trace a tile must hold, on average, for its list to be

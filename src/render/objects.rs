@@ -39,11 +39,34 @@ pub(crate) trait Query: Copy {
     /// ([`Recorder::tested`]), also where the tiles and the hierarchy choose which.
     const NOTES: bool = Self::EVERY_OBJECT;
 
+    /// Whether camera rays may test their tiles' lists: not every object, and no
+    /// decision forced (a list leaves out what a nearer plane hides from its tile).
+    const TILES: bool = !Self::EVERY_OBJECT;
+
     /// How far past its answer (the best hit, or the light) the query goes on testing
     /// objects, as a share of the distance.
     #[inline(always)]
     fn reach(self) -> f64 {
         0.0
+    }
+
+    /// The query as it applies to rays of the kind `rays` (what a forced decision needs
+    /// to know of the ray).
+    #[inline(always)]
+    fn on(self, _rays: Rays) -> Self {
+        self
+    }
+
+    /// Whether object `index` is forced to a miss on the rays this query is on.
+    #[inline(always)]
+    fn misses(self, _index: usize) -> bool {
+        false
+    }
+
+    /// What light `light`'s shadow test is forced to say (blocked or not), if forced.
+    #[inline(always)]
+    fn shadow(self, _light: usize) -> Option<bool> {
+        None
     }
 }
 
@@ -75,6 +98,85 @@ impl Query for Near {
     fn reach(self) -> f64 {
         self.0
     }
+}
+
+/// The answer with some of the tracer's decisions forced the other way, the same for
+/// every pixel ([`Override`]): what a diagnosis tries when no variant explains a student's
+/// image. Camera rays go through the hierarchy rather than their tiles' lists.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Forced<'o> {
+    overrides: &'o [Override],
+    /// The rays the query is on.
+    rays: Rays,
+}
+
+impl Forced<'_> {
+    /// The query that forces `overrides`.
+    pub(crate) fn new(overrides: &[Override]) -> Forced<'_> {
+        Forced {
+            overrides,
+            rays: Rays::Camera,
+        }
+    }
+}
+
+impl Query for Forced<'_> {
+    const TILES: bool = false;
+
+    #[inline]
+    fn on(self, rays: Rays) -> Self {
+        Forced { rays, ..self }
+    }
+
+    #[inline]
+    fn misses(self, index: usize) -> bool {
+        let rays = self.rays;
+        (self.overrides.iter()).any(|o| {
+            *o == Override::Miss {
+                object: index,
+                rays,
+            }
+        })
+    }
+
+    #[inline]
+    fn shadow(self, light: usize) -> Option<bool> {
+        self.overrides.iter().find_map(|o| match *o {
+            Override::Shadow { light: l, blocked } if l == light => Some(blocked),
+            _ => None,
+        })
+    }
+}
+
+/// The rays a forced miss applies to ([`Override::Miss`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Rays {
+    /// The camera rays.
+    Camera,
+    /// The mirror rays.
+    Mirror,
+    /// The shadow rays toward every light.
+    Shadow,
+}
+
+/// One decision of the tracer forced the other way on every pixel, whatever the geometry
+/// says: an object missed by one kind of ray, or a light's shadow test decided.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Override {
+    /// Object `object` (its index among the scene's objects) is missed by `rays`.
+    Miss {
+        /// The object's index among the scene's objects.
+        object: usize,
+        /// The rays that miss it.
+        rays: Rays,
+    },
+    /// Light `light`'s shadow test says `blocked`, where the stage casts shadow rays.
+    Shadow {
+        /// The light's index among the scene's lights.
+        light: usize,
+        /// Whether the light is blocked.
+        blocked: bool,
+    },
 }
 
 /// The closest hit of a ray: the object's index among the scene's objects, and t.
@@ -204,6 +306,10 @@ impl<'a, B: Rulebook> Objects<'a, B> {
         // inlined always: a closure called from three loops may not be, and for the
         // camera rays its call cost the plain render some 3 % (the ambient plane).
         let counts = |index: usize, t: f64| self.counts(index, ray, t, least);
+        let query = query.on(match from {
+            From::Eye(_) => Rays::Camera,
+            From::Surface(_) => Rays::Mirror,
+        });
         let test =
             |index: usize, rec: &mut R| self.closest_test::<K, Q, R>(index, skip, ray, query, rec);
         // A query of margins tests the objects that come near the best hit too.
@@ -213,7 +319,7 @@ impl<'a, B: Rulebook> Objects<'a, B> {
             From::Eye(tile) => tile,
             From::Surface(_) => None,
         };
-        if let Some(tile) = tile.filter(|_| !Q::EVERY_OBJECT) {
+        if let Some(tile) = tile.filter(|_| Q::TILES) {
             // Near to far: past the best hit so far, nothing can win or tie.
             for &index in tile.objects {
                 let index = index as usize;
@@ -269,7 +375,7 @@ impl<'a, B: Rulebook> Objects<'a, B> {
         query: Q,
         rec: &mut R,
     ) -> Option<f64> {
-        if self.out_of_closest(index, skip) {
+        if self.out_of_closest(index, skip) || query.misses(index) {
             return None;
         }
         test_and_record::<K, Q, R>(index, &self.scene.objects[index], ray, query, rec)
@@ -289,7 +395,10 @@ impl<'a, B: Rulebook> Objects<'a, B> {
     ) -> bool {
         let (skip, least) = self.leaving(From::Surface(from));
         let objects = &self.scene.objects;
-        let out = |index: usize| Some(index) == skip || self.casts_no_shadow(index);
+        let query = query.on(Rays::Shadow);
+        let out = |index: usize| {
+            Some(index) == skip || self.casts_no_shadow(index) || query.misses(index)
+        };
         // Under far-clip (spec §7.5) a blocker as far as its distance is no hit.
         let dist = self.rules.far().map_or(dist, |far| dist.min(far));
         let blocks =

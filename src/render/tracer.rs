@@ -353,7 +353,7 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
         }
         for lane in 0..N {
             if let (Some(h), Some(to)) = (&hits[lane], &towards[lane])
-                && self.shadowed::<K>(rules, h.object, to, query, &mut recs[lane])
+                && self.shadowed::<K>(light, rules, h.object, to, query, &mut recs[lane])
             {
                 towards[lane] = None;
             }
@@ -459,11 +459,12 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
         })
     }
 
-    /// Whether an object blocks the shadow ray toward the light, where the stage casts
-    /// shadow rays and no variant stops this one.
+    /// Whether an object blocks the shadow ray toward light `light`, where the stage casts
+    /// shadow rays and no variant stops this one; or what the query forces it to say.
     #[inline(always)]
     fn shadowed<K: Kernel>(
         &self,
+        light: usize,
         rules: LightRules,
         object: usize,
         towards: &Towards,
@@ -472,6 +473,9 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
     ) -> bool {
         if !self.stage.shadows() || rules.unshadowed() {
             return false;
+        }
+        if let Some(blocked) = query.shadow(light) {
+            return blocked;
         }
         let shadow = &towards.shadow;
         rec.record(|| Event::Light(LightStep::ShadowRay { ray: *shadow }));

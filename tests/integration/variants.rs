@@ -584,3 +584,69 @@ fn tile_unprojected_takes_the_x_direction_as_given() {
     let image = |options: &Options| render::render(&flat, options, |_| {}).pixels;
     assert_eq!(image(&plain), image(&given));
 }
+
+/// A decision forced on every pixel's path (`compare::render_forced`) gives the image of
+/// the edit of one record that makes the same decision, on every example and course
+/// scene: an object missed by camera and mirror rays is `hidden@LINE`, by shadow rays
+/// `no-shadow@LINE`; a light's shadow test forced open is `unshadowed@LINE`, forced shut
+/// (where the stage casts shadow rays, which then adds nothing) `no-light@LINE`.
+#[test]
+fn a_forced_decision_gives_the_image_of_the_edit_that_makes_it() {
+    use legacy_rt::compare::render_forced;
+    use legacy_rt::render::{Override, Rays};
+    let (width, height) = (40, 30);
+    let every: Vec<usize> = (0..width * height).collect();
+    let mut compared = 0;
+    for path in every_scene() {
+        let text = std::fs::read_to_string(&path).unwrap();
+        let scene = legacy_rt::load(&text).unwrap();
+        let options = Options::new(width, height);
+        let edited = |edit: &str, line: usize| {
+            let variant = Variant::parse(&format!("{edit}@{line}")).unwrap();
+            render::render(&scene, &options.with_variant(variant).unwrap(), |_| {}).pixels
+        };
+        let name = path.display();
+        // The first eight objects and every light: enough of each kind of record.
+        for (object, record) in scene.objects.iter().enumerate().take(8) {
+            let missed = |rays| Override::Miss { object, rays };
+            let hidden = [missed(Rays::Camera), missed(Rays::Mirror)];
+            let forced = render_forced(&scene, &options, &every, &hidden);
+            assert_eq!(
+                forced,
+                edited("hidden", record.line),
+                "{name} object {object}"
+            );
+            let forced = render_forced(&scene, &options, &every, &[missed(Rays::Shadow)]);
+            assert_eq!(
+                forced,
+                edited("no-shadow", record.line),
+                "{name} object {object}"
+            );
+            compared += 2;
+        }
+        for (light, record) in scene.lights.iter().enumerate() {
+            let open = [Override::Shadow {
+                light,
+                blocked: false,
+            }];
+            let forced = render_forced(&scene, &options, &every, &open);
+            assert_eq!(
+                forced,
+                edited("unshadowed", record.line),
+                "{name} light {light}"
+            );
+            let shut = [Override::Shadow {
+                light,
+                blocked: true,
+            }];
+            let forced = render_forced(&scene, &options, &every, &shut);
+            assert_eq!(
+                forced,
+                edited("no-light", record.line),
+                "{name} light {light}"
+            );
+            compared += 2;
+        }
+    }
+    assert!(compared > 100, "only {compared} images compared");
+}
