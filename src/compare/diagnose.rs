@@ -25,7 +25,7 @@
 
 use super::Reach;
 use super::{Reference, within};
-use crate::render::variant::{Row, Scope, output_row};
+use crate::render::variant::{Needs, Row, Scope, output_row};
 use crate::render::{self, Image, Kind, Options, VARIANTS, Variant};
 use crate::scene::{Material, Object, Pattern, Scene};
 use crate::shapes::Shape;
@@ -770,19 +770,12 @@ fn may_change(scene: &Scene, options: &Options, variant: &Variant) -> bool {
             Some(object) => reflects(object),
             None => scene.objects.iter().any(reflects),
         };
-    match variant.kind {
-        Kind::SquareFalloff
-        | Kind::NoShadows
-        | Kind::Unlit
-        | Kind::NoShadow
-        | Kind::NoLight
-        | Kind::Unshadowed => lit,
-        Kind::OneBounce | Kind::NoMirror => mirrors,
-        Kind::ShadowEpsilon => lit || mirrors,
-        Kind::FacingNormals | Kind::FlippedNormal => {
-            lit || mirrors || options.show == Some(render::Show::Normals)
-        }
-        _ => match (variant.row().scope, object) {
+    match variant.row().needs {
+        Needs::Light => lit,
+        Needs::Mirror => mirrors,
+        Needs::LightOrMirror => lit || mirrors,
+        Needs::Shading => lit || mirrors || options.show == Some(render::Show::Normals),
+        Needs::Kinds => match (variant.row().scope, object) {
             (Scope::ImageOrObject(kinds), None) => {
                 scene.objects.iter().any(|o| kinds.admit(&o.shape))
             }

@@ -18,7 +18,7 @@
 
 #[cfg(doc)]
 use crate::render::variant::Bytes;
-use crate::render::variant::{Kind, Site, Variant};
+use crate::render::variant::{Kind, Reads, Site, Variant};
 use crate::scene::Scene;
 use glam::DVec3;
 
@@ -169,22 +169,11 @@ impl Reach {
             let line = variant.line?;
             let object = scene.objects.iter().position(|o| o.line == line);
             let light = scene.lights.iter().position(|l| l.line == line);
-            reach.records |= match (variant.kind, object, light) {
-                (
-                    Kind::Hidden
-                    | Kind::Unlit
-                    | Kind::NoMirror
-                    | Kind::FlippedNormal
-                    | Kind::FacingNormals
-                    | Kind::TileParity
-                    | Kind::ShadowEpsilon,
-                    Some(object),
-                    _,
-                ) => HITS.bit(object),
-                (Kind::NoShadow, Some(object), _) => BLOCKERS.bit(object),
-                (Kind::NoLight | Kind::Unshadowed | Kind::SquareFalloff, _, Some(light)) => {
-                    LIGHTS.bit(light)
-                }
+            // What of the path the variant's rule is read on (its row says).
+            reach.records |= match (variant.row().reads, object, light) {
+                (Reads::Hits, Some(object), _) => HITS.bit(object),
+                (Reads::Blockers, Some(object), _) => BLOCKERS.bit(object),
+                (Reads::Lights, _, Some(light)) => LIGHTS.bit(light),
                 // Geometry (no-z-rule, cone-scale, nearer-root) may be hit where it was
                 // not.
                 _ => return None,

@@ -97,39 +97,15 @@ fn agreement(share: f64) -> String {
 /// The agreement from which the report says that one record's edit explains the image.
 const LOCALISED: f64 = 0.99;
 
-/// What a one-record edit does to its record, and where in the student's program to look.
+/// What a one-record edit does to its record, and where in the student's program to look
+/// (its row's advice, the variant's value in it).
 fn advice(variant: crate::render::Variant) -> (String, &'static str) {
-    use crate::render::Kind;
-    match variant.kind {
-        Kind::Hidden => (
-            "is not seen".into(),
-            "its hit test on camera and mirror rays",
-        ),
-        Kind::NoShadow => ("casts no shadow".into(), "its hit test on shadow rays"),
-        Kind::Unlit => ("receives no diffuse light".into(), "its diffuse term"),
-        Kind::NoMirror => ("reflects nothing".into(), "its mirror ray"),
-        Kind::FlippedNormal => ("has its normal reversed".into(), "its normal"),
-        Kind::NoLight => ("is off".into(), "the loop over the lights"),
-        Kind::Unshadowed => ("is never blocked".into(), "its shadow rays"),
-        Kind::BehindRoot => (
-            "keeps its smaller root in bounds even behind the ray's base (a ray from inside \
-             it misses it)"
-                .into(),
-            "the root its test returns: the smallest in bounds that is > 0 (spec §5.6)",
-        ),
-        Kind::NearerRoot => (
-            "tries only its smaller root".into(),
-            "the root its test returns: the other one when the first is out of bounds",
-        ),
-        Kind::ZTolerance => (
-            format!("counts hits up to z = {}", variant.value.unwrap_or(0.0)),
-            "its z > 0 test (spec §5.1)",
-        ),
-        Kind::StoppedAt => (
-            "and every record after it are not loaded".into(),
-            "the loop that reads the records: it must go on to the end of the file (spec §2.3)",
-        ),
-        _ => (
+    match variant.row().advice {
+        Some((what, look)) => {
+            let value = variant.value.unwrap_or(0.0);
+            (what.replace("{}", &value.to_string()), look)
+        }
+        None => (
             format!("is rendered with --variant {}", variant.id()),
             "the rule it replaces",
         ),

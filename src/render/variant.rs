@@ -133,12 +133,53 @@ pub struct Row {
     pub rule: &'static str,
     /// What it does instead.
     pub instead: &'static str,
+    /// What of a pixel's path its rule is read on, where it is scoped to one record.
+    pub reads: Reads,
+    /// Where the rule it replaces is consulted at all.
+    pub needs: Needs,
+    /// For a mistake of one record: what it does to its record ("casts no shadow") and
+    /// where in a student's program to look ("its hit test on shadow rays"); a `{}` in
+    /// the first stands for the variant's value.
+    pub advice: Option<(&'static str, &'static str)>,
+}
+
+/// What of a pixel's path the rule of a variant scoped to one record is read on: only
+/// the pixels whose paths hold that record can change (`compare --diagnose` re-traces
+/// those alone, src/compare/reach.rs).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Reads {
+    /// The hits on its object (camera and mirror rays).
+    Hits,
+    /// Its object as a shadow ray's blocker.
+    Blockers,
+    /// Its light's terms.
+    Lights,
+    /// The geometry, or the image as a whole: any pixel may change.
+    Anything,
+}
+
+/// Where the rule a variant replaces is consulted: without it in the scene and the
+/// stage, the variant cannot change the image (`compare --diagnose` does not try it).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Needs {
+    /// A light the stage lights.
+    Light,
+    /// An object that reflects (the one it is scoped to, or any) under a stage that
+    /// reflects.
+    Mirror,
+    /// Either of those.
+    LightOrMirror,
+    /// Either of those, or the image of the normals.
+    Shading,
+    /// An object of the kinds it applies to, where it applies to every one of them.
+    Kinds,
 }
 
 /// Declares [`Kind`] and [`VARIANTS`] from one list of rows, so that they cannot drift.
 macro_rules! variants {
     ($($(#[$doc:meta])* $kind:ident: $id:literal, $site:ident, $scope:expr, $parameter:expr,
-       $group:literal, $rule:literal, $instead:literal;)*) => {
+       $group:literal, $rule:literal, $instead:literal $(, reads $reads:ident)?
+       $(, needs $needs:ident)? $(, advice $what:literal, $look:literal)?;)*) => {
         /// Which variant: one per row of [`VARIANTS`], in its order.
         #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
         pub enum Kind {
@@ -155,7 +196,30 @@ macro_rules! variants {
             group: $group,
             rule: $rule,
             instead: $instead,
+            reads: or_default!(Reads, Anything $(, $reads)?),
+            needs: or_default!(Needs, Kinds $(, $needs)?),
+            advice: advice!($($what, $look)?),
         },)*];
+    };
+}
+
+/// A row's column given, or its default.
+macro_rules! or_default {
+    ($type:ident, $default:ident) => {
+        $type::$default
+    };
+    ($type:ident, $default:ident, $given:ident) => {
+        $type::$given
+    };
+}
+
+/// A row's advice, if given.
+macro_rules! advice {
+    () => {
+        None
+    };
+    ($what:literal, $look:literal) => {
+        Some(($what, $look))
     };
 }
 
@@ -184,25 +248,30 @@ variants! {
         "divides by the distance from this segment's base to the hit";
     /// §4.3: cos θ / dist² instead of cos θ / dist (every light, or one).
     SquareFalloff: "square-falloff", Tracer, ImageOrLight, Parameter::None, "falloff",
-        "§4.3 cos θ / dist", "cos θ / dist²";
+        "§4.3 cos θ / dist", "cos θ / dist²",
+        reads Lights, needs Light;
     /// §4.3: no shadow rays (every light reaches), mirrors still reflect.
     NoShadows: "no-shadows", Tracer, Image, Parameter::None, "shadows",
-        "§4.3 shadow ray", "every light reaches (stage diffuse, but with reflection)";
+        "§4.3 shadow ray", "every light reaches (stage diffuse, but with reflection)",
+        needs Light;
     /// §4.2/§4.3: rays leaving a surface (every surface, or one) test every object and
     /// count hits with t > ε, instead of skipping the object they leave.
     ShadowEpsilon: "shadow-epsilon", Hits, ImageOrObject(Any),
         Parameter::Optional("E", DEFAULT_EPSILON), "leaving",
         "§4.2/§4.3 shadow and reflected rays skip the object they leave",
-        "they test every object, counting hits with t > ε only (ε = 1e-6, or shadow-epsilon=E)";
+        "they test every object, counting hits with t > ε only (ε = 1e-6, or shadow-epsilon=E)",
+        reads Hits, needs LightOrMirror;
     /// §4.4: the normal flipped toward the viewer (N·D > 0 → -N), on every object or one.
     FacingNormals: "facing-normals", Tracer, ImageOrObject(Any), Parameter::None, "normal",
-        "§4.4 normals never flipped", "N flipped when N·D > 0";
+        "§4.4 normals never flipped", "N flipped when N·D > 0",
+        reads Hits, needs Shading;
     /// §5.1: no miss for plane hits with z > 0, on every plane or one.
     NoZRule: "no-z-rule", Scene, ImageOrObject(Planes), Parameter::None, "z rule",
         "§5.1 miss if z > 0", "no z test";
     /// §5.4: even relx + rely → foreground, on every tiled plane or one.
     TileParity: "tile-parity", Scene, ImageOrObject(TiledPlanes), Parameter::None, "parity",
-        "§5.4 odd relx + rely → foreground", "even → foreground";
+        "§5.4 odd relx + rely → foreground", "even → foreground",
+        reads Hits;
     /// §5.6: the cone's k = r²/h (the paraboloid's) instead of (r/h)², on every cone or
     /// one.
     ConeScale: "cone-scale", Scene, ImageOrObject(Cones), Parameter::None, "cone k",
@@ -211,10 +280,13 @@ variants! {
     /// bounds is a miss.
     NearerRoot: "nearer-root", Scene, ImageOrObject(BoundedQuadrics), Parameter::None, "root",
         "§5.6 smallest positive root in bounds",
-        "only the smaller root is tried; out of bounds is a miss";
+        "only the smaller root is tried; out of bounds is a miss",
+        advice "tries only its smaller root",
+            "the root its test returns: the other one when the first is out of bounds";
     /// §4.5: at most one reflected ray per camera ray.
     OneBounce: "one-bounce", Tracer, Image, Parameter::None, "bounces",
-        "§4.5 recursion", "at most one reflected ray per camera ray";
+        "§4.5 recursion", "at most one reflected ray per camera ray",
+        needs Mirror;
     /// §4.2: MAX_DIST D instead of 32.
     MaxDist: "max-dist", Option, Image, Parameter::Required("D", 70.0), "max-dist",
         "§4.2 MAX_DIST 32", "MAX_DIST D (one term of the course used 70)";
@@ -235,10 +307,13 @@ variants! {
     /// from inside a tube misses it.
     BehindRoot: "behind-root", Scene, ImageOrObject(BoundedQuadrics), Parameter::None, "root",
         "§5.6 the smallest positive root in bounds",
-        "the smaller root in bounds even when it is <= 0, which §4.6 then rejects (the sphere's rule of §5.2): a ray whose base is inside the surface misses it";
+        "the smaller root in bounds even when it is <= 0, which §4.6 then rejects (the sphere's rule of §5.2): a ray whose base is inside the surface misses it",
+        advice "keeps its smaller root in bounds even behind the ray's base (a ray from inside it misses it)",
+            "the root its test returns: the smallest in bounds that is > 0 (spec §5.6)";
     /// §5.1 (§7.5): a plane's hit counts up to z = E, not 0.
     ZTolerance: "z-tolerance", Scene, ImageOrObject(Planes), Parameter::Required("E", 0.01), "z rule",
-        "§5.1 miss if z > 0", "miss if z > E";
+        "§5.1 miss if z > 0", "miss if z > E",
+        advice "counts hits up to z = {}", "its z > 0 test (spec §5.1)";
     /// §4.6 (§7.5): a hit farther than D from the ray's base is a miss.
     FarClip: "far-clip", Hits, Image, Parameter::Required("D", 32.0), "far clip",
         "§4.6 any t > 0 counts",
@@ -251,7 +326,9 @@ variants! {
     /// §2.3 (§7.5): the records from LINE on are not loaded.
     StoppedAt: "stopped-at", Scene, Record, Parameter::None, "stopped",
         "§2.3 records to the end of the file",
-        "the records from LINE on are not loaded (a reader that stopped there without an error)";
+        "the records from LINE on are not loaded (a reader that stopped there without an error)",
+        advice "and every record after it are not loaded",
+            "the loop that reads the records: it must go on to the end of the file (spec §2.3)";
     /// The notes' root formula in f64 (`--kernel textbook`).
     Textbook: "textbook", Option, Image, Parameter::None, "kernel",
         "the accurate roots", "the notes' (-b ± sqrt(b² - 4ac)) / 2a in f64";
@@ -261,28 +338,42 @@ variants! {
     /// §7.4: camera and mirror rays pass through the object.
     Hidden: "hidden", Hits, Object(Any), Parameter::None, "hidden",
         "§4.6 every object is a candidate for camera and mirror rays",
-        "camera and mirror rays pass through the object";
+        "camera and mirror rays pass through the object",
+        reads Hits,
+        advice "is not seen", "its hit test on camera and mirror rays";
     /// §7.4: the object casts no shadow.
     NoShadow: "no-shadow", Hits, Object(Any), Parameter::None, "casts",
         "§4.3 every object may block a shadow ray",
-        "the object casts no shadow (shadow rays pass through it)";
+        "the object casts no shadow (shadow rays pass through it)",
+        reads Blockers, needs Light,
+        advice "casts no shadow", "its hit test on shadow rays";
     /// §7.4: no light adds to the object.
     Unlit: "unlit", Tracer, Object(Any), Parameter::None, "lit",
         "§4.3 every light adds to the object",
-        "the object receives no diffuse light (ambient and mirror only)";
+        "the object receives no diffuse light (ambient and mirror only)",
+        reads Hits, needs Light,
+        advice "receives no diffuse light", "its diffuse term";
     /// §7.4: the object's specular reflection is not traced.
     NoMirror: "no-mirror", Tracer, Object(Any), Parameter::None, "mirror",
         "§4.5 reflection where the specular is non-zero",
-        "the object's specular reflection is not traced";
+        "the object's specular reflection is not traced",
+        reads Hits, needs Mirror,
+        advice "reflects nothing", "its mirror ray";
     /// §7.4: the object's normal is reversed at every hit.
     FlippedNormal: "flipped-normal", Tracer, Object(Any), Parameter::None, "normal",
-        "§4.4 the normal as computed", "the object's normal is reversed at every hit";
+        "§4.4 the normal as computed", "the object's normal is reversed at every hit",
+        reads Hits, needs Shading,
+        advice "has its normal reversed", "its normal";
     /// §7.4: the light is off.
     NoLight: "no-light", Tracer, Light, Parameter::None, "light",
-        "§4.2 step 5 every light", "the light is off";
+        "§4.2 step 5 every light", "the light is off",
+        reads Lights, needs Light,
+        advice "is off", "the loop over the lights";
     /// §7.4: the light's shadow rays are never blocked.
     Unshadowed: "unshadowed", Tracer, Light, Parameter::None, "shadows",
-        "§4.3 the shadow test", "the light's shadow rays are never blocked";
+        "§4.3 the shadow test", "the light's shadow rays are never blocked",
+        reads Lights, needs Light,
+        advice "is never blocked", "its shadow rays";
 }
 
 impl Kind {
