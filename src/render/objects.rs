@@ -19,7 +19,7 @@
 use super::bvh::{Boxes, Bvh, beats};
 use super::record::{Event, LightStep, Recorder, Skip};
 use super::tiles::{Tile, Tiles};
-use super::variant::Rulebook;
+use super::variant::{Kind, Rulebook};
 use super::{Camera, Options};
 use crate::scene::{Object, Scene};
 use crate::shapes::kernel::Kernel;
@@ -230,7 +230,8 @@ impl<'a, B: Rulebook> Objects<'a, B> {
         let bvh = accelerate
             .then(|| Bvh::for_rays(&boxes, rays, threads))
             .flatten();
-        let hidden = |index: usize| rules.some_hidden() && rules.object(index).hidden();
+        let hidden =
+            |index: usize| rules.some(Kind::Hidden) && rules.object(index).has(Kind::Hidden);
         let tiles = (camera.filter(|_| accelerate)).and_then(|(camera, threads)| {
             let pixels = (&camera.xs[..], &camera.ys[..]);
             Tiles::new(
@@ -280,13 +281,13 @@ impl<'a, B: Rulebook> Objects<'a, B> {
     /// Whether object `index` is out of camera and mirror rays' tests (hidden).
     #[inline(always)]
     fn hidden(&self, index: usize) -> bool {
-        self.rules.some_hidden() && self.rules.object(index).hidden()
+        self.rules.some(Kind::Hidden) && self.rules.object(index).has(Kind::Hidden)
     }
 
     /// Whether object `index` is out of shadow rays' tests (no-shadow).
     #[inline(always)]
     fn casts_no_shadow(&self, index: usize) -> bool {
-        self.rules.some_cast_no_shadow() && self.rules.object(index).casts_no_shadow()
+        self.rules.some(Kind::NoShadow) && self.rules.object(index).has(Kind::NoShadow)
     }
 
     /// The closest object hit along `ray` with t > 0, skipping the one it leaves; ties go

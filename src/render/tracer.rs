@@ -12,7 +12,7 @@ use super::record::{Event, LightStep, Recorder};
 use super::shading::{Screen, material_and_pattern};
 use super::stage::{Show, Stage};
 use super::tiles::{TILE, Tile};
-use super::variant::{Divisor, LightRules, ObjectRules, Rulebook};
+use super::variant::{Divisor, Kind, LightRules, ObjectRules, Rulebook};
 use super::{Camera, Options, object_colour};
 use crate::scene::{Light, Material, Scene};
 use crate::shapes::kernel::Kernel;
@@ -347,7 +347,7 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
             let Some(h) = &hits[lane] else { continue };
             let rec = &mut recs[lane];
             rec.record(|| Event::Lamp { light });
-            if !h.rules.unlit() {
+            if !h.rules.has(Kind::Unlit) {
                 towards[lane] = self.towards(lamp, rules, &h.surface, &h.material, rec);
             }
         }
@@ -389,10 +389,10 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
     ) -> (Surface, Material) {
         let record = &self.scene.objects[object];
         let mut surface = record.shape.surface(ray, t);
-        if rules.facing_normals() && surface.normal.dot(ray.dir) > 0.0 {
+        if rules.has(Kind::FacingNormals) && surface.normal.dot(ray.dir) > 0.0 {
             surface.normal = -surface.normal;
         }
-        if rules.flipped_normal() {
+        if rules.has(Kind::FlippedNormal) {
             surface.normal = -surface.normal;
         }
         let (material, pattern) = material_and_pattern(record, &surface, &self.screen);
@@ -423,7 +423,7 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
             rec.record(|| Event::Light(LightStep::NoDiffuse));
             return None;
         }
-        if rules.off() {
+        if rules.has(Kind::NoLight) {
             rec.record(|| Event::Light(LightStep::Off));
             return None;
         }
@@ -471,7 +471,7 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
         query: impl Query,
         rec: &mut impl Recorder,
     ) -> bool {
-        if !self.stage.shadows() || rules.unshadowed() {
+        if !self.stage.shadows() || rules.has(Kind::Unshadowed) {
             return false;
         }
         if let Some(blocked) = query.shadow(light) {
@@ -498,7 +498,7 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
     /// §4.5): its specular is not zero, the stage reflects, and no variant stops it.
     #[inline(always)]
     fn reflects(&self, rules: ObjectRules, material: &Material) -> bool {
-        material.specular != DVec3::ZERO && self.stage.reflects() && !rules.no_mirror()
+        material.specular != DVec3::ZERO && self.stage.reflects() && !rules.has(Kind::NoMirror)
     }
 
     /// The diagnostic image of `show` at the first hit along `ray`.
@@ -575,7 +575,7 @@ struct Towards {
 #[inline(always)]
 fn term(light: &Light, rules: LightRules, material: &Material, towards: &Towards) -> DVec3 {
     let Towards { dist, cos, .. } = *towards;
-    let falloff = if rules.square_falloff() {
+    let falloff = if rules.has(Kind::SquareFalloff) {
         dist * dist
     } else {
         dist

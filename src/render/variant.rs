@@ -915,83 +915,34 @@ pub(crate) enum Divisor {
     Segment,
 }
 
-/// The rules one object follows where variants change them: a bit each, so that the
-/// tracer reads them in one load.
+/// The variants one object, or one light, follows: a bit for each kind of [`VARIANTS`],
+/// read where its rule lives (`has(Kind::Hidden)`), all in one load. [`Rules::new`] sets
+/// the bit of every row whose rule one object or one light follows, so a new variant of
+/// one record needs its row and the line that reads its bit, nothing here.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub(crate) struct ObjectRules(u8);
+pub(crate) struct Applied(u64);
 
-impl ObjectRules {
-    const HIDDEN: u8 = 1;
-    const CASTS_NO_SHADOW: u8 = 1 << 1;
-    const UNLIT: u8 = 1 << 2;
-    const NO_MIRROR: u8 = 1 << 3;
-    const FLIPPED_NORMAL: u8 = 1 << 4;
-    const FACING_NORMALS: u8 = 1 << 5;
+// A bit for each kind.
+const _: () = assert!(VARIANTS.len() <= 64);
 
-    /// hidden: not a candidate for camera and mirror rays.
+impl Applied {
+    /// Whether variant `kind` applies.
     #[inline(always)]
-    pub(crate) fn hidden(self) -> bool {
-        self.0 & Self::HIDDEN != 0
+    pub(crate) fn has(self, kind: Kind) -> bool {
+        self.0 >> kind as u32 & 1 != 0
     }
 
-    /// no-shadow: never blocks a shadow ray.
-    #[inline(always)]
-    pub(crate) fn casts_no_shadow(self) -> bool {
-        self.0 & Self::CASTS_NO_SHADOW != 0
-    }
-
-    /// unlit: no light adds to it.
-    #[inline(always)]
-    pub(crate) fn unlit(self) -> bool {
-        self.0 & Self::UNLIT != 0
-    }
-
-    /// no-mirror: no reflected ray leaves it.
-    #[inline(always)]
-    pub(crate) fn no_mirror(self) -> bool {
-        self.0 & Self::NO_MIRROR != 0
-    }
-
-    /// flipped-normal: its normal reversed.
-    #[inline(always)]
-    pub(crate) fn flipped_normal(self) -> bool {
-        self.0 & Self::FLIPPED_NORMAL != 0
-    }
-
-    /// facing-normals: its normal turned toward the ray.
-    #[inline(always)]
-    pub(crate) fn facing_normals(self) -> bool {
-        self.0 & Self::FACING_NORMALS != 0
+    /// These, and `kind`.
+    fn with(self, kind: Kind) -> Applied {
+        Applied(self.0 | 1 << kind as u32)
     }
 }
 
-/// The rules one light follows where variants change them, a bit each.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub(crate) struct LightRules(u8);
+/// The variants one object follows.
+pub(crate) type ObjectRules = Applied;
 
-impl LightRules {
-    const OFF: u8 = 1;
-    const UNSHADOWED: u8 = 1 << 1;
-    const SQUARE_FALLOFF: u8 = 1 << 2;
-
-    /// no-light: the light adds nothing.
-    #[inline(always)]
-    pub(crate) fn off(self) -> bool {
-        self.0 & Self::OFF != 0
-    }
-
-    /// unshadowed (or no-shadows): its shadow rays are never blocked.
-    #[inline(always)]
-    pub(crate) fn unshadowed(self) -> bool {
-        self.0 & Self::UNSHADOWED != 0
-    }
-
-    /// square-falloff: cos θ / dist².
-    #[inline(always)]
-    pub(crate) fn square_falloff(self) -> bool {
-        self.0 & Self::SQUARE_FALLOFF != 0
-    }
-}
+/// The variants one light follows.
+pub(crate) type LightRules = Applied;
 
 /// The rules of spec §4-§5 as a render applies them: as written, but where a variant
 /// replaces one. The tracer, the aggregate and the camera read these values where each
@@ -1010,11 +961,9 @@ pub(crate) struct Rules {
     pub(crate) bounces: usize,
     /// Per object, in the scene's order.
     pub(crate) objects: Box<[ObjectRules]>,
-    /// Whether some object is hidden, and whether some casts no shadow: the aggregate
-    /// looks at each object's rules only then.
-    pub(crate) some_hidden: bool,
-    /// See `some_hidden`.
-    pub(crate) some_cast_no_shadow: bool,
+    /// The variants some object follows: the aggregate looks at each object's rules only
+    /// for those.
+    pub(crate) some: Applied,
     /// Per object, shadow-epsilon's ε for the rays leaving it, where it applies.
     pub(crate) epsilons: Option<Box<[Option<f64>]>>,
     /// Per light, in the scene's order.
@@ -1052,11 +1001,15 @@ impl Rules {
                 .filter(|(_, l)| scoped(l.line))
                 .map(|(i, _)| i)
                 .collect();
-            let mut set_objects = |bit: u8| {
-                object_indices.iter().for_each(|&i| objects[i].0 |= bit);
+            let mut set_objects = |kind: Kind| {
+                object_indices
+                    .iter()
+                    .for_each(|&i| objects[i] = objects[i].with(kind));
             };
-            let mut set_lights = |bit: u8| {
-                light_indices.iter().for_each(|&i| lights[i].0 |= bit);
+            let mut set_lights = |kind: Kind| {
+                light_indices
+                    .iter()
+                    .for_each(|&i| lights[i] = lights[i].with(kind));
             };
             match variant.kind {
                 Kind::PixelCentre => rules.pixel_centre = true,
@@ -1072,35 +1025,25 @@ impl Rules {
                         .iter()
                         .for_each(|&i| epsilons[i] = Some(epsilon));
                 }
-                Kind::FacingNormals => set_objects(ObjectRules::FACING_NORMALS),
-                Kind::Hidden => set_objects(ObjectRules::HIDDEN),
-                Kind::NoShadow => set_objects(ObjectRules::CASTS_NO_SHADOW),
-                Kind::Unlit => set_objects(ObjectRules::UNLIT),
-                Kind::NoMirror => set_objects(ObjectRules::NO_MIRROR),
-                Kind::FlippedNormal => set_objects(ObjectRules::FLIPPED_NORMAL),
-                Kind::NoShadows | Kind::Unshadowed => set_lights(LightRules::UNSHADOWED),
-                Kind::NoLight => set_lights(LightRules::OFF),
-                Kind::SquareFalloff => set_lights(LightRules::SQUARE_FALLOFF),
+                // Every light's shadow rays unblocked: unshadowed on each.
+                Kind::NoShadows => set_lights(Kind::Unshadowed),
                 Kind::RowOffset => rules.row_offset = variant.value.unwrap_or(1.0) as i64,
                 Kind::ColumnOffset => rules.column_offset = variant.value.unwrap_or(1.0) as i64,
                 Kind::Jitter => rules.jitter = Some(variant.value.unwrap_or(1.0) as u64),
                 Kind::FarClip => rules.far = variant.value.unwrap_or(f64::INFINITY),
-                // The scene's (`Rules::scene`) and the options' own.
-                Kind::NoZRule
-                | Kind::TileParity
-                | Kind::ConeScale
-                | Kind::NearerRoot
-                | Kind::BehindRoot
-                | Kind::ZTolerance
-                | Kind::TileUnprojected
-                | Kind::StoppedAt
-                | Kind::MaxDist
-                | Kind::Textbook
-                | Kind::TextbookF32 => {}
+                // A rule one object, or one light, follows where the tracer or the hits
+                // read it: its bit. The others are the scene's (`Rules::scene`) and the
+                // options' own.
+                kind => match (variant.row().site, variant.row().scope) {
+                    (Site::Hits | Site::Tracer, Scope::Object(_) | Scope::ImageOrObject(_)) => {
+                        set_objects(kind)
+                    }
+                    (Site::Tracer, Scope::Light | Scope::ImageOrLight) => set_lights(kind),
+                    _ => {}
+                },
             }
         }
-        rules.some_hidden = objects.iter().any(|o| o.hidden());
-        rules.some_cast_no_shadow = objects.iter().any(|o| o.casts_no_shadow());
+        rules.some = Applied(objects.iter().fold(0, |some, o| some | o.0));
         rules.objects = objects.into();
         rules.epsilons = epsilons
             .iter()
@@ -1211,10 +1154,9 @@ pub(crate) trait Rulebook: Copy + Send + Sync {
     fn light(self, index: usize) -> LightRules;
     /// shadow-epsilon's ε for rays leaving object `index`, if it applies.
     fn epsilon(self, index: usize) -> Option<f64>;
-    /// Whether some object is hidden (camera and mirror rays then ask each object).
-    fn some_hidden(self) -> bool;
-    /// Whether some object casts no shadow (shadow rays then ask each object).
-    fn some_cast_no_shadow(self) -> bool;
+    /// Whether some object follows variant `kind` (hidden: camera and mirror rays then
+    /// ask each object; no-shadow: shadow rays do).
+    fn some(self, kind: Kind) -> bool;
     /// The most reflected rays per camera ray (spec §4.5, or one-bounce).
     fn bounces(self) -> usize;
     /// What step 6 of spec §4.2 divides by.
@@ -1244,11 +1186,7 @@ impl Rulebook for AsWritten {
         None
     }
     #[inline(always)]
-    fn some_hidden(self) -> bool {
-        false
-    }
-    #[inline(always)]
-    fn some_cast_no_shadow(self) -> bool {
+    fn some(self, _: Kind) -> bool {
         false
     }
     #[inline(always)]
@@ -1283,12 +1221,8 @@ impl Rulebook for &Rules {
         self.epsilons.as_ref().and_then(|epsilons| epsilons[index])
     }
     #[inline(always)]
-    fn some_hidden(self) -> bool {
-        self.some_hidden
-    }
-    #[inline(always)]
-    fn some_cast_no_shadow(self) -> bool {
-        self.some_cast_no_shadow
+    fn some(self, kind: Kind) -> bool {
+        self.some.has(kind)
     }
     #[inline(always)]
     fn bounces(self) -> usize {
@@ -1526,8 +1460,9 @@ mod tests {
             .and_then(|o| o.with_variant(Variant::of(Kind::NoLight).at(9)))
             .unwrap();
         let rules = Rules::new(&options, &scene);
-        assert!(!rules.objects[0].casts_no_shadow() && rules.objects[1].casts_no_shadow());
-        assert!(rules.lights[0].off());
+        let no_shadow = |i: usize| rules.objects[i].has(Kind::NoShadow);
+        assert!(!no_shadow(0) && no_shadow(1));
+        assert!(rules.lights[0].has(Kind::NoLight));
         // A line that starts no record of the kind is an error naming those that do.
         let wrong = Options::new(4, 3)
             .with_variant(Variant::of(Kind::ConeScale).at(3))
