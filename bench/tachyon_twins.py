@@ -67,7 +67,14 @@ def write(folder, name, spheres, cylinders, planes):
         f.write("".join(dat))
 
 def main():
-    folder = sys.argv[1] if len(sys.argv) > 1 else "target/bench"
+    args = sys.argv[1:]
+    # An option is never a folder: --help prints this, anything else is refused.
+    if args[:1] in (["-h"], ["--help"]):
+        print(__doc__)
+        return
+    if len(args) > 1 or (args and args[0].startswith("-")):
+        sys.exit(__doc__)
+    folder = args[0] if args else "target/bench"
     os.makedirs(folder, exist_ok=True)
     floor = ((0, 1, 0), (0, -3, 0), (0.6, 0.6, 0.6))
     wall = ((0, 0, 1), (0, 0, -14), (0.3, 0.3, 0.8))
