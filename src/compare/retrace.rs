@@ -24,10 +24,10 @@ use glam::DVec3;
 pub fn render_pixels(scene: &Scene, options: &Options, indices: &[usize]) -> Vec<[u8; 3]> {
     // The kernel chosen once, outside the loop over the pixels (as in `render`), and
     // whether the spans' rays go together: each loop is compiled for one.
-    with_kernel!(options.kernel, K => with_tracer(scene, options, indices, |_, tracer, background, rows| {
+    with_kernel!(options.kernel, K => with_tracer(scene, options, indices, |_, tracer, rows| {
         match tracer.together() {
-            true => spans_of::<K, true>(tracer, indices, background, rows),
-            false => spans_of::<K, false>(tracer, indices, background, rows),
+            true => spans_of::<K, true>(tracer, indices, rows),
+            false => spans_of::<K, false>(tracer, indices, rows),
         }
     }))
 }
@@ -36,10 +36,10 @@ pub fn render_pixels(scene: &Scene, options: &Options, indices: &[usize]) -> Vec
 fn spans_of<K: Kernel, const TOGETHER: bool>(
     tracer: &Tracer<&Rules>,
     indices: &[usize],
-    background: [u8; 3],
     rows: &mut Rows,
 ) -> Vec<[u8; 3]> {
-    let mut pixels = vec![background; indices.len()];
+    // Every pixel is written: a span whose tile sees nothing gives black's bytes.
+    let mut pixels = vec![[0; 3]; indices.len()];
     let mut at = 0;
     while at < indices.len() {
         // The pixel at `at` and those after it in its row and tile, as in `render`'s
@@ -75,7 +75,7 @@ pub fn render_forced(
     overrides: &[Override],
 ) -> Vec<[u8; 3]> {
     let query = Forced::new(overrides);
-    at_pixels(scene, options, indices, |_, tracer, _, x, y| {
+    at_pixels(scene, options, indices, |_, tracer, x, y| {
         let colour = with_kernel!(options.kernel, K => tracer.pixel::<K>(x, y, query, &mut ()));
         tracer.bytes(colour)
     })
@@ -89,39 +89,34 @@ pub fn render_forced(
 /// 2.2 ms with them): the lists pay from about 7 pixels a tile.
 const PIXELS_PER_LIST: usize = 8;
 
-/// `per_pixel(setup, tracer, background, x, y)` for each of the pixels `indices` (output
+/// `per_pixel(setup, tracer, x, y)` for each of the pixels `indices` (output
 /// order), with [`with_tracer`]'s tracer.
 fn at_pixels<T>(
     scene: &Scene,
     options: &Options,
     indices: &[usize],
-    mut per_pixel: impl FnMut(&Setup, &Tracer<&Rules>, [u8; 3], usize, usize) -> T,
+    mut per_pixel: impl FnMut(&Setup, &Tracer<&Rules>, usize, usize) -> T,
 ) -> Vec<T> {
-    with_tracer(
-        scene,
-        options,
-        indices,
-        |setup, tracer, background, rows| {
-            // A plain loop: as `map(..).collect()` the same tracing took some 15 % longer
-            // (a02, every pixel, 14.9 ms against 13.7 ms; `render` 12.8 ms).
-            let mut pixels = Vec::with_capacity(indices.len());
-            for &i in indices {
-                let (x, y) = rows.at(i);
-                pixels.push(per_pixel(setup, tracer, background, x, y));
-            }
-            pixels
-        },
-    )
+    with_tracer(scene, options, indices, |setup, tracer, rows| {
+        // A plain loop: as `map(..).collect()` the same tracing took some 15 % longer
+        // (a02, every pixel, 14.9 ms against 13.7 ms; `render` 12.8 ms).
+        let mut pixels = Vec::with_capacity(indices.len());
+        for &i in indices {
+            let (x, y) = rows.at(i);
+            pixels.push(per_pixel(setup, tracer, x, y));
+        }
+        pixels
+    })
 }
 
-/// `trace(setup, tracer, background, rows)` with a tracer with the lists of the tiles the
-/// pixels `indices` fall in where they hold [`PIXELS_PER_LIST`] of them a tile, the
-/// bytes of black under the rules and the pixels' (x, y) by their index.
+/// `trace(setup, tracer, rows)` with a tracer with the lists of the tiles the
+/// pixels `indices` fall in where they hold [`PIXELS_PER_LIST`] of them a tile, and the
+/// pixels' (x, y) by their index.
 fn with_tracer<T>(
     scene: &Scene,
     options: &Options,
     indices: &[usize],
-    trace: impl FnOnce(&Setup, &Tracer<&Rules>, [u8; 3], &mut Rows) -> T,
+    trace: impl FnOnce(&Setup, &Tracer<&Rules>, &mut Rows) -> T,
 ) -> T {
     let setup = Setup::new(scene, options);
     let mut rows = Rows::new(&setup, options);
@@ -138,8 +133,7 @@ fn with_tracer<T>(
     let cells = (indices.len() >= PIXELS_PER_LIST * count).then_some(cells);
     let tiles = (cells.as_deref()).map(|cells| (&setup.threads, Some(cells)));
     let tracer = Tracer::new(&setup.scene, &setup.rules, options, &setup.camera, tiles);
-    let background = setup.rules.bytes(DVec3::ZERO);
-    trace(&setup, &tracer, background, &mut rows)
+    trace(&setup, &tracer, &mut rows)
 }
 
 /// A pixel's (x, y) from its index in output order, the row's division done once per
@@ -221,7 +215,7 @@ impl Recorder for Involved {
 
 /// What the paths of the pixels `indices` (output order) involve, under `options`.
 pub fn involved(scene: &Scene, options: &Options, indices: &[usize]) -> Vec<Involved> {
-    at_pixels(scene, options, indices, |_, tracer, _, x, y| {
+    at_pixels(scene, options, indices, |_, tracer, x, y| {
         let mut path = Involved::default();
         with_kernel!(options.kernel, K => tracer.pixel::<K>(x, y, Plain, &mut path));
         path
@@ -281,7 +275,7 @@ pub fn path_agreement_at(
 ) -> (Vec<bool>, Vec<PathChange>) {
     let mut changes = Vec::new();
     let mut at = 0;
-    let first = at_pixels(scene, options, indices, |setup, tracer, _, x, y| {
+    let first = at_pixels(scene, options, indices, |setup, tracer, x, y| {
         let (first, mine) = path_changes(setup, options, tracer, (x, y), at, &agrees);
         changes.extend(mine);
         at += 1;
