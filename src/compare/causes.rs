@@ -12,9 +12,10 @@
 //! ([`supported`]); otherwise the report says no cause explains them.
 
 use super::diagnose::{Diagnosis, Focus, with_mask};
+use super::flips::{Flip, flips};
 use super::{Reference, differing, for_each_set, within};
 use crate::render::variant::Site;
-use crate::render::{self, Image, Options, Variant};
+use crate::render::{self, Image, Kind, Options, Variant};
 use crate::scene::Scene;
 use serde::Serialize;
 
@@ -70,11 +71,14 @@ impl Cause {
     }
 }
 
+/// The id of the cause that jittered camera rays are.
+const JITTER: &str = "jitter";
+
 /// A cause's share of what was left, at least: half.
-const HALF: f64 = 0.5;
+pub(crate) const HALF: f64 = 0.5;
 
 /// What a cause may break for each pixel it explains, at most: a twentieth.
-const BREAKS_PER_FIX: usize = 20;
+pub(crate) const BREAKS_PER_FIX: usize = 20;
 
 /// A share of the differing pixels that leaves nothing to look for: the causes found
 /// explain the image, and jitter is not looked for.
@@ -86,9 +90,16 @@ pub fn supported(explains: usize, of: usize, breaks: usize) -> bool {
     explains > 0 && explains as f64 >= HALF * of as f64 && breaks * BREAKS_PER_FIX <= explains
 }
 
+/// What `compare --diagnose` finds: the candidates the catalogue's search found, where
+/// the differences concentrate, the causes the pixels support, and the decisions on the
+/// reference's paths whose change gives the student's bytes.
+pub type Explained = (Vec<Diagnosis>, Option<Focus>, Vec<Cause>, Vec<Flip>);
+
 /// The diagnosis of `student` against `rendered` (the scene's image under `options`):
-/// the candidates the catalogue's search found, where the differences concentrate, and
-/// the causes the pixels support. `mask` says which pixels differ beyond `levels`.
+/// the candidates the catalogue's search found, where the differences concentrate, the
+/// causes the pixels support, and the decision flips of what the whole-image causes
+/// leave ([`flips`](super::flips::flips)). `mask` says which pixels differ beyond
+/// `levels`.
 pub fn explain(
     scene: &Scene,
     options: &Options,
@@ -96,11 +107,11 @@ pub fn explain(
     student: &Image,
     levels: u8,
     mask: (&[u64], usize),
-) -> (Vec<Diagnosis>, Option<Focus>, Vec<Cause>) {
+) -> Explained {
     let reference = &rendered.image;
     let mut causes = Vec::new();
     if mask.1 == 0 {
-        return (Vec::new(), None, causes);
+        return (Vec::new(), None, causes, Vec::new());
     }
     // 1. The axes swapped and the bytes of the whole image: undone before anything else
     // is looked at.
@@ -120,10 +131,53 @@ pub fn explain(
     }
     let mask = left.as_ref().map_or(mask, |(m, n)| (&m[..], *n));
     if mask.1 == 0 {
-        return (Vec::new(), None, causes);
+        return (Vec::new(), None, causes, Vec::new());
     }
+    let case = Case {
+        scene,
+        options,
+        rendered,
+        student: &student,
+        levels,
+    };
+    let (found, focus, more) = scene_causes(case, mask);
+    causes.extend(more);
+    let flips = decision_flips(case, mask, &causes);
+    (found, focus, causes, flips)
+}
+
+/// What a diagnosis compares: the scene, the options its reference was rendered with,
+/// the reference, the student's image (with whatever whole-image bytes were undone) and
+/// the tolerance in levels.
+#[derive(Clone, Copy)]
+pub struct Case<'a> {
+    /// The scene.
+    pub scene: &'a Scene,
+    /// The options of the reference.
+    pub options: &'a Options,
+    /// The reference, with its marks and paths.
+    pub rendered: &'a Reference,
+    /// The student's image.
+    pub student: &'a Image,
+    /// The tolerance, in byte levels.
+    pub levels: u8,
+}
+
+/// The catalogue's causes of the differences `mask` of `student` left once the whole
+/// image's bytes are undone (the scene's variants, jittered rays), with the candidates
+/// found and where the differences concentrate.
+fn scene_causes(case: Case, mask: (&[u64], usize)) -> (Vec<Diagnosis>, Option<Focus>, Vec<Cause>) {
+    let Case {
+        scene,
+        options,
+        rendered,
+        student,
+        levels,
+    } = case;
+    let reference = &rendered.image;
+    let mut causes = Vec::new();
     // 2. The catalogue.
-    let (found, focus) = with_mask(scene, options, rendered, &student, levels, mask, &[]);
+    let (found, focus) = with_mask(scene, options, rendered, student, levels, mask, &[]);
     let supported_causes = stated(&found, mask.1);
     let explained: usize = supported_causes.iter().map(|c| c.explains).sum();
     if explained as f64 >= NEARLY_ALL * mask.1 as f64 {
@@ -132,7 +186,7 @@ pub fn explain(
     }
     // 3. Jittered rays: the pixels that lie within what the reference takes inside their
     // pixel are explained by them; what remains is diagnosed again.
-    if let Some((cause, repaired)) = jitter_cause(scene, options, reference, &student, levels, mask)
+    if let Some((cause, repaired)) = jitter_cause(scene, options, reference, student, levels, mask)
     {
         // Jittered rays leave hardly a differing pixel outside what the reference takes
         // inside it; where they leave more, jitter stands only if another cause explains
@@ -172,6 +226,90 @@ pub fn explain(
     }
     causes.extend(supported_causes);
     (found, focus, causes)
+}
+
+/// The decision flips of the differences `mask` of `student` left by the whole-image
+/// causes among `causes`: none under jittered rays (a pixel's bytes are then another
+/// point's), and under a row or column offset, the image upside down or the like, those
+/// of the reference moved as the cause says.
+fn decision_flips(case: Case, mask: (&[u64], usize), causes: &[Cause]) -> Vec<Flip> {
+    let options = case.options;
+    if causes.iter().any(|c| c.id == JITTER) {
+        return Vec::new();
+    }
+    let camera = (causes.iter().flat_map(|c| &c.variants)).filter(|v| v.row().site == Site::Camera);
+    let moves: Vec<Variant> = camera.copied().collect();
+    if moves.is_empty() {
+        return flips(case, mask, &[]);
+    }
+    let Ok(moved) = (moves.iter()).try_fold(*options, |options, v| options.with_variant(*v)) else {
+        return Vec::new();
+    };
+    // The pixels that still differ from the reference moved so: where the moves only
+    // shift the pixels, the reference's own bytes from where they come, and the
+    // uncovered edge rendered; otherwise every differing pixel rendered.
+    let from = shifted_from(options, &moved, &moves);
+    let (mut indices, mut rendered_at) = (Vec::with_capacity(mask.1), Vec::new());
+    for_each_set(mask.0, |i| match from.as_ref().map(|from| from(i)) {
+        Some(Some(j)) => indices.push((i, Some(j))),
+        _ => {
+            indices.push((i, None));
+            rendered_at.push(i);
+        }
+    });
+    let mut bytes = super::render_pixels(case.scene, &moved, &rendered_at).into_iter();
+    let mut left = vec![0u64; mask.0.len()];
+    let mut count = 0;
+    for (i, from) in indices {
+        let bytes = match from {
+            Some(j) => Some(case.rendered.image.pixels[j]),
+            None => bytes.next(),
+        };
+        if bytes.is_none_or(|b| !within(b, case.student.pixels[i], case.levels)) {
+            left[i / 64] |= 1 << (i % 64);
+            count += 1;
+        }
+    }
+    let case = Case {
+        options: &moved,
+        ..case
+    };
+    flips(case, (&left, count), &moves)
+}
+
+/// Where `moves` only shift the pixels (rows and columns off, the image upside down) of
+/// the image `options` render: for a pixel of the image under `moved` (its index),
+/// the index of the reference's pixel whose ray it shows, `None` where that ray lies
+/// past the window's edge. The world point of pixel i + N is the one row or column
+/// offset N gives pixel i (`Camera::new` adds N to i before it divides), so the bytes
+/// are the same.
+fn shifted_from<'a>(
+    options: &'a Options,
+    moved: &'a Options,
+    moves: &[Variant],
+) -> Option<impl Fn(usize) -> Option<usize> + 'a> {
+    let shifts = |v: &Variant| {
+        matches!(
+            v.kind,
+            Kind::RowOffset | Kind::ColumnOffset | Kind::UpsideDown
+        )
+    };
+    if !moves.iter().all(shifts) || options.variants.iter().any(|v| v.kind == Kind::Jitter) {
+        return None;
+    }
+    let offset = |kind: Kind| {
+        let value = moves.iter().find(|v| v.kind == kind).and_then(|v| v.value);
+        value.unwrap_or(0.0) as i64
+    };
+    let (rows, columns) = (offset(Kind::RowOffset), offset(Kind::ColumnOffset));
+    let (w, h) = (options.width as i64, options.height as i64);
+    Some(move |i: usize| {
+        let (r, x) = (i / options.width, (i % options.width) as i64);
+        let y = moved.row_of(r) as i64;
+        let (x, y) = (x + columns, y + rows);
+        ((0..w).contains(&x) && (0..h).contains(&y))
+            .then(|| options.row_of(y as usize) * options.width + x as usize)
+    })
 }
 
 /// The causes among the catalogue's best candidate (one variant, or a pair) that the
@@ -576,7 +714,7 @@ fn jitter_cause(
             false => (agreeing as f64 / looked.len() as f64 * count as f64).round() as usize,
         };
         let cause = Cause::of_images(
-            "jitter".into(),
+            JITTER.into(),
             "the camera rays look jittered, or aimed elsewhere inside their pixel: these \
                     differing pixels lie within what the reference takes inside their pixel"
                 .into(),
@@ -585,4 +723,45 @@ fn jitter_cause(
         );
         Some((cause, repaired))
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_shifted_image_s_pixels_are_the_reference_s_from_where_they_come() {
+        // Rendered whole under each move, every pixel whose ray lies inside the window
+        // has the bytes of the reference's pixel that shifted_from names.
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/shadows.txt");
+        let scene = crate::load(&std::fs::read_to_string(path).unwrap()).unwrap();
+        let options = Options::new(48, 36);
+        let reference = render::render(&scene, &options, |_| {});
+        let moves = [
+            "row-offset=2",
+            "row-offset=-3",
+            "column-offset=1",
+            "upside-down",
+        ];
+        let pairs = [
+            &["row-offset=-1", "column-offset=-2"][..],
+            &["upside-down", "row-offset=1"],
+        ];
+        let cases = moves.iter().map(std::slice::from_ref).chain(pairs);
+        for ids in cases {
+            let moves: Vec<Variant> = ids.iter().map(|id| Variant::parse(id).unwrap()).collect();
+            let moved = (moves.iter()).fold(options, |o, v| o.with_variant(*v).unwrap());
+            let image = render::render(&scene, &moved, |_| {});
+            let from = shifted_from(&options, &moved, &moves).unwrap();
+            let mut covered = 0;
+            for (i, &bytes) in image.pixels.iter().enumerate() {
+                if let Some(j) = from(i) {
+                    assert_eq!(bytes, reference.pixels[j], "{ids:?} at {i}");
+                    covered += 1;
+                }
+            }
+            // Only the rows and columns past the window's edge are uncovered.
+            assert!(covered >= 30 * 44, "{ids:?}: {covered}");
+        }
+    }
 }

@@ -9,6 +9,7 @@
 
 pub mod causes;
 mod diagnose;
+pub mod flips;
 mod margins;
 mod reach;
 pub mod read;
@@ -226,6 +227,11 @@ pub struct Report {
     /// least half of what was left.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub causes: Option<Vec<causes::Cause>>,
+    /// With diagnose: the groups of the differing pixels (those the whole-image causes
+    /// leave) that one decision on the reference's path, or two, forced the other way
+    /// explains, largest first, each with what its decisions share.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub flips: Option<Vec<flips::Flip>>,
     /// The size the grader required (`--size W H`), when the student's image has
     /// another: `[W, H]` with verdict `wrong-size`.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -244,6 +250,18 @@ impl Report {
         }
         for cause in self.causes.iter_mut().flatten() {
             cause.trace = cause.pixel.map(|[x, y]| command(x, y));
+        }
+        // A decision found under a whole-image cause (a row off) is traced under it.
+        for flip in self.flips.iter_mut().flatten() {
+            let [x, y] = flip.pixel;
+            let mut trace = command(x, y);
+            if let Some((head, scene)) = trace.split_once(" < ")
+                && !flip.under.is_empty()
+            {
+                let ids: Vec<String> = flip.under.iter().map(|v| v.id()).collect();
+                trace = format!("{head} --variant {} < {scene}", ids.join(","));
+            }
+            flip.trace = Some(trace);
         }
     }
 }
@@ -353,6 +371,7 @@ pub fn wrong_size(student: &Image, expected: (usize, usize), settings: &Settings
         diagnosis: None,
         focus: None,
         causes: None,
+        flips: None,
         expected_size: Some([expected.0, expected.1]),
     }
 }
@@ -510,7 +529,7 @@ pub fn report(
             }
         })
         .collect();
-    let (diagnosis, focus, causes) = match scene {
+    let (diagnosis, focus, causes, flips) = match scene {
         Some((scene, options)) if settings.diagnose => {
             let options = Options {
                 width,
@@ -518,11 +537,11 @@ pub fn report(
                 ..*options
             };
             let mask = (&beyond[..], differing_pixels);
-            let (found, focus, causes) =
+            let (found, focus, causes, flips) =
                 causes::explain(scene, &options, rendered, student, levels, mask);
-            (Some(found), focus, Some(causes))
+            (Some(found), focus, Some(causes), Some(flips))
         }
-        _ => (None, None, None),
+        _ => (None, None, None, None),
     };
     Ok(Report {
         verdict,
@@ -543,6 +562,7 @@ pub fn report(
         diagnosis,
         focus,
         causes,
+        flips,
         expected_size: None,
     })
 }

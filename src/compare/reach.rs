@@ -19,6 +19,7 @@
 #[cfg(doc)]
 use crate::render::variant::Bytes;
 use crate::render::variant::{Kind, Reads, Site, Variant};
+use crate::render::{Override, Rays};
 use crate::scene::Scene;
 use glam::DVec3;
 
@@ -71,6 +72,21 @@ impl Paths {
     /// `light` added something.
     pub(crate) fn lit(&mut self, light: usize) {
         self.0 |= LIGHTS.bit(light);
+    }
+
+    /// Whether this path may take the decision `flip` forces the other way: it hits the
+    /// object (by camera or mirror ray), or the object blocks one of its shadow rays, or
+    /// the light's term is consulted.
+    pub(crate) fn may_take(self, flip: &Override) -> bool {
+        let bit = match *flip {
+            Override::Miss {
+                object,
+                rays: Rays::Shadow,
+            } => BLOCKERS.bit(object),
+            Override::Miss { object, .. } => HITS.bit(object),
+            Override::Shadow { light, .. } => LIGHTS.bit(light),
+        };
+        self.0 & bit != 0
     }
 
     /// The colour's bytes are `bytes` under the reference's rule (spec §4.7's truncation):

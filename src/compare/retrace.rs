@@ -7,7 +7,7 @@ use crate::render::record::{Event, LightStep, Recorder};
 use crate::render::tiles;
 use crate::render::tracer::Tracer;
 use crate::render::variant::{Rulebook, Rules};
-use crate::render::{Forced, Options, Override, Plain, Setup, each_pixel};
+use crate::render::{Forced, Near, Options, Override, Plain, Setup, each_pixel};
 use crate::scene::Scene;
 use crate::shapes::kernel::{Kernel, with_kernel};
 use glam::DVec3;
@@ -74,10 +74,46 @@ pub fn render_forced(
     indices: &[usize],
     overrides: &[Override],
 ) -> Vec<[u8; 3]> {
-    let query = Forced::new(overrides);
+    let mut each = render_forced_each(scene, options, &[(overrides, indices)]);
+    each.pop().unwrap_or_default()
+}
+
+/// [`render_forced`] for each of `jobs` (the overrides, and the pixels to force them
+/// on), on one frame: the decision flips of `compare --diagnose` try many sets of
+/// overrides, each on a few pixels. The camera rays go through the hierarchy, not the
+/// tiles' lists ([`Forced`]), so none is built.
+pub(crate) fn render_forced_each(
+    scene: &Scene,
+    options: &Options,
+    jobs: &[(&[Override], &[usize])],
+) -> Vec<Vec<[u8; 3]>> {
+    with_tracer(scene, options, &[], |_, tracer, rows| {
+        let each = |&(overrides, indices): &(&[Override], &[usize])| {
+            let query = Forced::new(overrides);
+            let pixel = |&i: &usize| {
+                let (x, y) = rows.at(i);
+                let colour =
+                    with_kernel!(options.kernel, K => tracer.pixel::<K>(x, y, query, &mut ()));
+                tracer.bytes(colour)
+            };
+            indices.iter().map(pixel).collect()
+        };
+        jobs.iter().map(each).collect()
+    })
+}
+
+/// What the paths of the pixels `indices` (output order) tell a recorder `R` each, with
+/// the shapes' decisions on every object tested ([`Near`] with no reach: the tiles and
+/// the hierarchy still choose which are tested): the decisions the diagnosis may flip.
+pub(crate) fn recorded<R: Recorder + Default>(
+    scene: &Scene,
+    options: &Options,
+    indices: &[usize],
+) -> Vec<R> {
     at_pixels(scene, options, indices, |_, tracer, x, y| {
-        let colour = with_kernel!(options.kernel, K => tracer.pixel::<K>(x, y, query, &mut ()));
-        tracer.bytes(colour)
+        let mut path = R::default();
+        with_kernel!(options.kernel, K => tracer.pixel::<K>(x, y, Near(0.0), &mut path));
+        path
     })
 }
 

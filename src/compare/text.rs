@@ -237,7 +237,8 @@ pub fn text(report: &Report, reference: &str, student: &str, choices: Option<&Ch
 }
 
 /// The diagnosis's lines of the report (empty without `--diagnose`): the variants that
-/// explain the student's image, the sentence that names one object's or light's
+/// explain the student's image, the decisions on the reference's paths whose change
+/// gives the student's bytes, the sentence that names one object's or light's
 /// mistake, or where the differences concentrate, and the advice to read the student's
 /// own trace with `--against`. `compare`'s text ends with them; `grade`'s report shows
 /// them for each pair.
@@ -326,6 +327,7 @@ pub fn diagnosis(report: &Report) -> Vec<String> {
             line(sentence);
         }
     }
+    line_flips(report, &mut line);
     if let Some(focus) = &report.focus
         && causes.is_empty()
     {
@@ -375,4 +377,54 @@ pub fn diagnosis(report: &Report) -> Vec<String> {
         ));
     }
     out
+}
+
+/// The decision flips of `report`, a line each: what the student's program decides
+/// otherwise, on which rays and where, with the counts and a pixel to trace.
+fn line_flips(report: &Report, line: &mut impl FnMut(String)) {
+    let flips = report.flips.as_deref().unwrap_or(&[]);
+    let Some(first) = flips.first() else {
+        return;
+    };
+    let pixels = match first.sampled_from {
+        Some(all) => format!(
+            "{} of the {} differing pixels no whole-image cause explains (an even sample)",
+            thousands(first.of),
+            thousands(all)
+        ),
+        None => format!(
+            "the {} differing pixels no whole-image cause explains",
+            thousands(first.of)
+        ),
+    };
+    line(format!(
+        "decisions on the reference's paths whose change gives the student's bytes, on \
+         {pixels}:"
+    ));
+    for flip in flips {
+        let mut text = format!("  - {}", flip.decision);
+        if let Some(condition) = &flip.condition {
+            text += &format!(" {condition}");
+            if let Some(holds) = flip.condition_holds.filter(|&n| n < flip.explains) {
+                text += &format!(" ({} of them)", thousands(holds));
+            }
+        }
+        text += &format!(": {} of {}", thousands(flip.explains), thousands(flip.of));
+        if let Some(lights) = &flip.lights {
+            text += &format!(", toward {lights}");
+        }
+        text += &match (flip.breaks, flip.breaks_sampled) {
+            (0, _) => "; no agreeing pixel whose path takes it would change".to_string(),
+            (n, sampled) => format!(
+                "; {}{} agreeing pixels whose path takes it would change",
+                if sampled { "about " } else { "" },
+                thousands(n)
+            ),
+        };
+        text += &format!("; {}", flip.advice);
+        if let Some(trace) = &flip.trace {
+            text += &format!("; `{trace}` shows one");
+        }
+        line(text);
+    }
 }

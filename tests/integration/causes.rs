@@ -267,6 +267,11 @@ fn edits_made_by_hand_are_named_by_their_record_never_by_an_unrelated_variant() 
     let (found, json) = causes(&scene, &student);
     assert!(!found.is_empty(), "{json:#}");
     assert!(found.iter().all(|id| id.ends_with("@18")), "{json:#}");
+    // Its decisions: the sphere missed where the camera rays and the shadow rays met it,
+    // one group.
+    let flips = json["flips"].as_array().unwrap();
+    let decision = "sphere (line 18) is missed by camera and shadow rays";
+    assert_eq!(flips[0]["decision"], decision, "{json:#}");
 }
 
 #[test]
@@ -464,4 +469,101 @@ fn an_independent_tracer_s_mistakes_are_each_named() {
         let (found, json) = causes(&scene, &student);
         assert_eq!(found, expected, "{name}: {json:#}");
     }
+}
+
+/// examples/tube.txt with a second light on the tube's other side: the floor inside the
+/// tube is in the shadow of its wall toward either light, and a shadow ray from there
+/// starts inside the tube.
+fn tube_lit_twice(dir: &Path) -> PathBuf {
+    let text = std::fs::read_to_string(example("tube")).unwrap();
+    let scene = dir.join("tube-lit-twice.txt");
+    std::fs::write(&scene, text + "\n10\n8 8 8\n-3 -1.6 -3\n").unwrap();
+    scene
+}
+
+/// The trace of the report's command `trace` (`legacy-rt trace X Y W H [--variant V] <
+/// SCENE`), run.
+fn traced(command: &str) -> String {
+    let (args, scene) = command.split_once(" < ").unwrap();
+    let args: Vec<&str> = args.split_whitespace().skip(1).collect();
+    let output = super::common::run(&args, &std::fs::read(scene).unwrap());
+    assert!(output.status.success(), "{command}");
+    String::from_utf8(output.stdout).unwrap()
+}
+
+#[test]
+fn a_cylinder_that_keeps_its_root_behind_the_base_is_one_group_of_decisions() {
+    // The tiny tracer (spec §4-§5, not the program's code) with the course program's
+    // cylinder: its smaller root in bounds even when it is behind the ray's base. The
+    // decisions that differ are the cylinder's on shadow rays from inside it, toward
+    // both lights: one group, whatever else the image has (a row off).
+    let dir = folder("causes-flips");
+    let scene = tube_lit_twice(&dir);
+    let text = std::fs::read_to_string(&scene).unwrap();
+    let size = (SIZE.0 as usize, SIZE.1 as usize);
+    let cases = [
+        (0, vec!["behind-root"], None),
+        (1, vec!["row-offset=1", "behind-root"], Some("row-offset=1")),
+    ];
+    for (row_offset, expected, under) in cases {
+        let mistakes = Mistakes {
+            behind_root: true,
+            row_offset,
+            ..Mistakes::default()
+        };
+        let student = dir.join(format!("behind-root-{row_offset}.ppm"));
+        write_ppm(&student, size, &tiny_tracer(&text, size, mistakes));
+        let (found, json) = causes(&scene, &student);
+        assert_eq!(found, expected, "{json:#}");
+        let flips = json["flips"].as_array().unwrap();
+        assert_eq!(flips.len(), 1, "{json:#}");
+        let flip = &flips[0];
+        let decision = "cylinder (line 11) does not block shadow rays";
+        assert_eq!(flip["decision"], decision, "{flip:#}");
+        let inside = "whose base is inside it (the nearer root is behind the base)";
+        assert_eq!(flip["condition"], inside, "{flip:#}");
+        assert_eq!(flip["lights"], "both lights", "{flip:#}");
+        let count = |key: &str| flip[key].as_u64().unwrap();
+        assert!(count("explains") * 100 >= 95 * count("of"), "{flip:#}");
+        assert_eq!(count("condition_holds"), count("explains"), "{flip:#}");
+        assert_eq!(count("breaks"), 0, "{flip:#}");
+        // Every differing pixel the whole-image cause leaves is examined.
+        assert!(flip.get("sampled_from").is_none(), "{flip:#}");
+        // The pixel it names, traced (under the row offset where there is one): the
+        // cylinder blocks a shadow ray there whose nearer root is behind its base.
+        let command = flip["trace"].as_str().unwrap();
+        match under {
+            Some(id) => assert!(command.contains(&format!("--variant {id} <")), "{command}"),
+            None => assert!(!command.contains("--variant"), "{command}"),
+        }
+        let trace = traced(command);
+        assert!(
+            trace.contains("behind the ray's base")
+                && trace.contains("blocked by cylinder (line 11)"),
+            "{trace}"
+        );
+    }
+}
+
+#[test]
+fn decision_flips_name_a_hidden_object_and_nothing_for_a_rule_of_the_colours() {
+    let dir = folder("causes-flips-variants");
+    let scene = example("shadows");
+    // The second sphere (line 25) hidden: every differing pixel is its camera rays'.
+    let student = dir.join("hidden.ppm");
+    render(&scene, SIZE, &["--variant", "hidden@25"], &student);
+    let (_, json) = causes(&scene, &student);
+    let flips = json["flips"].as_array().unwrap();
+    assert_eq!(flips.len(), 1, "{json:#}");
+    assert_eq!(
+        flips[0]["decision"],
+        "sphere (line 25) is missed by camera rays"
+    );
+    assert_eq!(flips[0]["explains"], flips[0]["of"], "{json:#}");
+    // Squared falloff changes every lit colour and no decision: a decision that gives a
+    // few pixels the student's bytes by chance is not told.
+    let student = dir.join("square-falloff.ppm");
+    render(&scene, SIZE, &["--variant", "square-falloff"], &student);
+    let (_, json) = causes(&scene, &student);
+    assert_eq!(json["flips"], serde_json::json!([]), "{json:#}");
 }

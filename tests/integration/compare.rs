@@ -768,11 +768,15 @@ pub(super) struct Mistakes {
     /// Each camera ray through a point drawn within half a pixel of the pixel's, from
     /// this seed (the tracer's own generator, not the program's).
     pub jitter: Option<u64>,
+    /// A cylinder's hit is its smaller root in bounds even when it is not positive (then
+    /// no hit): the course program's cylinder, which a ray whose base is inside misses.
+    pub behind_root: bool,
 }
 
-/// A tiny tracer of spec §4 and §5.1-§5.2, written here for spheres, planes and point
-/// lights without mirrors, independent of the program: the scene `text` at (w, h), with
-/// `mistakes`. Returns the pixels, top row first.
+/// A tiny tracer of spec §4, §5.1-§5.2 and §5.6's cylinder, written here for spheres,
+/// planes, cylinders whose centre line is +y, and point lights, without mirrors,
+/// independent of the program: the scene `text` at (w, h), with `mistakes`. Returns the
+/// pixels, top row first.
 pub(super) fn tiny_tracer(text: &str, (w, h): (usize, usize), mistakes: Mistakes) -> Vec<[u8; 3]> {
     type V = [f64; 3];
     let sub = |a: V, b: V| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
@@ -796,10 +800,12 @@ pub(super) fn tiny_tracer(text: &str, (w, h): (usize, usize), mistakes: Mistakes
     let triple = |v: Vec<f64>| [v[0], v[1], v[2]];
     let window = take(2);
     let eye = triple(take(3));
-    // (ambient, diffuse, shape): a sphere (centre, r) or a plane (unit normal, point).
+    // (ambient, diffuse, shape): a sphere (centre, r), a plane (unit normal, point) or an
+    // upright cylinder (centre of base, r, height).
     enum Shape {
         Sphere(V, f64),
         Plane(V, V),
+        Cylinder(V, f64, f64),
     }
     let mut objects: Vec<(V, V, Shape)> = Vec::new();
     let mut lights: Vec<(V, V)> = Vec::new();
@@ -807,11 +813,16 @@ pub(super) fn tiny_tracer(text: &str, (w, h): (usize, usize), mistakes: Mistakes
         at.set(at.get() + 1);
         match code as i32 {
             10 => lights.push((triple(take(3)), triple(take(3)))),
-            13 | 14 => {
+            13 | 14 | 22 => {
                 let (ambient, diffuse, _specular) = (triple(take(3)), triple(take(3)), take(3));
                 let shape = match code as i32 {
                     13 => Shape::Sphere(triple(take(3)), take(1)[0]),
-                    _ => Shape::Plane(unit(triple(take(3))), triple(take(3))),
+                    14 => Shape::Plane(unit(triple(take(3))), triple(take(3))),
+                    _ => {
+                        let (base, line, size) = (triple(take(3)), triple(take(3)), take(2));
+                        assert_eq!(unit(line), [0.0, 1.0, 0.0], "an upright cylinder only");
+                        Shape::Cylinder(base, size[0], size[1])
+                    }
                 };
                 objects.push((ambient, diffuse, shape));
             }
@@ -840,6 +851,25 @@ pub(super) fn tiny_tracer(text: &str, (w, h): (usize, usize), mistakes: Mistakes
                     return None;
                 }
                 t
+            }
+            // x² + z² = r² about the base, 0 <= y <= h: the smallest positive root in
+            // bounds (or, mistaken, the smaller root in bounds whatever its sign).
+            Shape::Cylinder(c, r, height) => {
+                let bc = sub(b, c);
+                let a = d[0] * d[0] + d[2] * d[2];
+                let bb = 2.0 * (bc[0] * d[0] + bc[2] * d[2]);
+                let cc = bc[0] * bc[0] + bc[2] * bc[2] - r * r;
+                let disc = bb * bb - 4.0 * a * cc;
+                if a == 0.0 || disc < 0.0 {
+                    return None;
+                }
+                let roots = [-1.0, 1.0].map(|s| (-bb + s * disc.sqrt()) / (2.0 * a));
+                let bounded = |t: f64| (0.0..=height).contains(&(bc[1] + t * d[1]));
+                let mut kept = roots.into_iter().filter(|&t| bounded(t));
+                match mistakes.behind_root {
+                    true => kept.next()?,
+                    false => kept.find(|&t| t > 0.0)?,
+                }
             }
         };
         (t > 0.0).then_some(t)
@@ -880,6 +910,7 @@ pub(super) fn tiny_tracer(text: &str, (w, h): (usize, usize), mistakes: Mistakes
             let normal = match *shape {
                 Shape::Sphere(c, _) => unit(sub(point, c)),
                 Shape::Plane(n, _) => n,
+                Shape::Cylinder(c, _, _) => unit([point[0] - c[0], 0.0, point[2] - c[2]]),
             };
             let mut colour = *ambient;
             for &(emissivity, location) in &lights {
