@@ -15,7 +15,7 @@ use super::diagnose::{Diagnosis, Focus, with_mask};
 use super::flips::{Flip, flips};
 use super::{Reference, differing, for_each_set, within};
 use crate::render::variant::Site;
-use crate::render::{self, Image, Kind, Options, Variant};
+use crate::render::{self, Image, Options, Variant};
 use crate::scene::Scene;
 use serde::Serialize;
 
@@ -248,7 +248,7 @@ fn decision_flips(case: Case, mask: (&[u64], usize), causes: &[Cause]) -> Vec<Fl
     // The pixels that still differ from the reference moved so: where the moves only
     // shift the pixels, the reference's own bytes from where they come, and the
     // uncovered edge rendered; otherwise every differing pixel rendered.
-    let from = shifted_from(options, &moved, &moves);
+    let from = super::diagnose::shifted_from(options, &moved, &moves);
     let (mut indices, mut rendered_at) = (Vec::with_capacity(mask.1), Vec::new());
     for_each_set(mask.0, |i| match from.as_ref().map(|from| from(i)) {
         Some(Some(j)) => indices.push((i, Some(j))),
@@ -275,41 +275,6 @@ fn decision_flips(case: Case, mask: (&[u64], usize), causes: &[Cause]) -> Vec<Fl
         ..case
     };
     flips(case, (&left, count), &moves)
-}
-
-/// Where `moves` only shift the pixels (rows and columns off, the image upside down) of
-/// the image `options` render: for a pixel of the image under `moved` (its index),
-/// the index of the reference's pixel whose ray it shows, `None` where that ray lies
-/// past the window's edge. The world point of pixel i + N is the one row or column
-/// offset N gives pixel i (`Camera::new` adds N to i before it divides), so the bytes
-/// are the same.
-fn shifted_from<'a>(
-    options: &'a Options,
-    moved: &'a Options,
-    moves: &[Variant],
-) -> Option<impl Fn(usize) -> Option<usize> + 'a> {
-    let shifts = |v: &Variant| {
-        matches!(
-            v.kind,
-            Kind::RowOffset | Kind::ColumnOffset | Kind::UpsideDown
-        )
-    };
-    if !moves.iter().all(shifts) || options.variants.iter().any(|v| v.kind == Kind::Jitter) {
-        return None;
-    }
-    let offset = |kind: Kind| {
-        let value = moves.iter().find(|v| v.kind == kind).and_then(|v| v.value);
-        value.unwrap_or(0.0) as i64
-    };
-    let (rows, columns) = (offset(Kind::RowOffset), offset(Kind::ColumnOffset));
-    let (w, h) = (options.width as i64, options.height as i64);
-    Some(move |i: usize| {
-        let (r, x) = (i / options.width, (i % options.width) as i64);
-        let y = moved.row_of(r) as i64;
-        let (x, y) = (x + columns, y + rows);
-        ((0..w).contains(&x) && (0..h).contains(&y))
-            .then(|| options.row_of(y as usize) * options.width + x as usize)
-    })
 }
 
 /// The causes among the catalogue's best candidate (one variant, or a pair) that the
@@ -752,7 +717,7 @@ mod tests {
             let moves: Vec<Variant> = ids.iter().map(|id| Variant::parse(id).unwrap()).collect();
             let moved = (moves.iter()).fold(options, |o, v| o.with_variant(*v).unwrap());
             let image = render::render(&scene, &moved, |_| {});
-            let from = shifted_from(&options, &moved, &moves).unwrap();
+            let from = super::super::diagnose::shifted_from(&options, &moved, &moves).unwrap();
             let mut covered = 0;
             for (i, &bytes) in image.pixels.iter().enumerate() {
                 if let Some(j) = from(i) {

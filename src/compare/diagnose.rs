@@ -548,6 +548,39 @@ fn reached(
     }
 }
 
+/// Where `moves` only shift the pixels (rows and columns off, the image upside down) of
+/// the image `options` render: for a pixel of the image under `moved` (its index),
+/// the index of the reference's pixel whose ray it shows, `None` where that ray lies
+/// past the window's edge. The world point of pixel i + N is the one row or column
+/// offset N gives pixel i (`Camera::new` adds N to i before it divides), so the bytes
+/// are the same.
+pub(super) fn shifted_from(
+    options: &Options,
+    moved: &Options,
+    moves: &[Variant],
+) -> Option<impl Fn(usize) -> Option<usize> + use<>> {
+    let has = |options: &Options, kind: Kind| options.variants.iter().any(|v| v.kind == kind);
+    if !moves.iter().all(|v| SHIFTS.contains(&v.kind)) || has(options, Kind::Jitter) {
+        return None;
+    }
+    let offset = |kind: Kind| {
+        let value = moves.iter().find(|v| v.kind == kind).and_then(|v| v.value);
+        value.unwrap_or(0.0) as i64
+    };
+    let (rows, columns) = (offset(Kind::RowOffset), offset(Kind::ColumnOffset));
+    let (width, height) = (options.width, options.height);
+    // Whether each image is written upside down, once: `Options::row_of` looks.
+    let flipped = [has(options, Kind::UpsideDown), has(moved, Kind::UpsideDown)];
+    let (w, h) = (width as i64, height as i64);
+    Some(move |i: usize| {
+        let (r, x) = (i / width, (i % width) as i64);
+        let y = output_row(r, height, flipped[1]) as i64;
+        let (x, y) = (x + columns, y + rows);
+        ((0..w).contains(&x) && (0..h).contains(&y))
+            .then(|| output_row(y as usize, height, flipped[0]) * width + x as usize)
+    })
+}
+
 /// Whether output pixel i is one that a row or column offset among `variants` leaves
 /// uncovered (its ray beyond the window): a program with that mistake writes there what
 /// its buffer held, so a difference there is the offset's.
@@ -669,6 +702,21 @@ impl Scorer<'_> {
             true => Reach::of(scene, self.given, variants),
             false => None,
         };
+        // Rows or columns off, the image upside down: the reference's pixels moved (under
+        // the other variants' reach), not a render.
+        if reach.is_none()
+            && let Some((image, edge)) = self.shifted(variants, &options)
+        {
+            let mut edge = edge.into_iter();
+            for (i, b) in image.into_iter().enumerate() {
+                match b {
+                    Some(b) => tally(i, agrees(i, b)),
+                    None if uncovered(i) => tally(i, false),
+                    None => tally(i, edge.next().is_some_and(|b| agrees(i, b))),
+                }
+            }
+            return Some(counts);
+        }
         match reach {
             Some(reach) => {
                 let rule = reach.byte_rule();
@@ -707,6 +755,47 @@ impl Scorer<'_> {
         Some(counts)
     }
 }
+
+impl Scorer<'_> {
+    /// The image under `variants` (at `options`) where those among them that move pixels
+    /// only shift them (rows and columns off, upside down) and the others reach few
+    /// pixels: each pixel the reference's from where its ray comes, under the others
+    /// ([`reached`]); `None` for a pixel whose ray lies past the window's edge, with, in
+    /// order, the bytes of those among them no offset leaves uncovered (rendered).
+    /// `None` where the variants are not of that kind.
+    #[allow(clippy::type_complexity)]
+    fn shifted(
+        &self,
+        variants: &[Variant],
+        options: &Options,
+    ) -> Option<(Vec<Option<[u8; 3]>>, Vec<[u8; 3]>)> {
+        let (scene, rendered) = (self.scene, self.rendered);
+        let pixels = rendered.image.pixels.len();
+        let shifts = |v: &&Variant| SHIFTS.contains(&v.kind);
+        let moves: Vec<Variant> = variants.iter().filter(shifts).copied().collect();
+        let rest: Vec<Variant> = variants.iter().filter(|v| !shifts(v)).copied().collect();
+        if moves.is_empty() || rendered.paths.len() != pixels {
+            return None;
+        }
+        let reach = Reach::of(scene, self.given, &rest)?;
+        let from = shifted_from(self.options, options, &moves)?;
+        let under_rest = (rest.iter()).try_fold(*self.options, |o, &v| o.with_variant(v).ok())?;
+        let mut moved = vec![[0u8; 3]; pixels];
+        reached(scene, &under_rest, (reach, rendered), 0..pixels, |j, b| {
+            moved[j] = b
+        });
+        let uncovered = uncovered(variants, options.width, options.height);
+        let image: Vec<Option<[u8; 3]>> = (0..pixels).map(|i| from(i).map(|j| moved[j])).collect();
+        let edge: Vec<usize> = (0..pixels)
+            .filter(|&i| image[i].is_none() && !uncovered(i))
+            .collect();
+        Some((image, super::render_pixels(scene, options, &edge)))
+    }
+}
+
+/// The variants that move the image's pixels without changing them: what a pixel shows
+/// is the reference's pixel from elsewhere ([`shifted_from`]).
+const SHIFTS: [Kind; 3] = [Kind::RowOffset, Kind::ColumnOffset, Kind::UpsideDown];
 
 /// The place of a byte rule's [`Agreeing`] among the three: none, round-bytes, scale-256.
 fn rule_slot(rule: Option<Kind>) -> usize {
