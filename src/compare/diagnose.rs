@@ -331,13 +331,13 @@ pub(crate) fn with_mask(
     {
         try_near(stopped_near(scene, line), &mut first_round, &mut candidates);
     }
-    // A continuous parameter (far-clip=D, z-tolerance=E) is tried at a few round values
-    // first; where the best of them does better than the image as it is, the round
-    // values between its neighbours are tried too, the roundest first, so that among
-    // equals the one a student would write is kept (30, not 29.7). Values on either side
-    // of the student's may agree alike (each gets part of the pixels right): the range
-    // searched spans every value that ties with the best.
-    for kind in [Kind::FarClip, Kind::ZTolerance] {
+    // A continuous parameter (far-clip=D, z-tolerance=E, shadow-epsilon=E) is tried at a
+    // few round values first; where the best of them does better than the image as it
+    // is, the round values between its neighbours are tried too, the roundest first, so
+    // that among equals the one a student would write is kept (30, not 29.7). Values on
+    // either side of the student's may agree alike (each gets part of the pixels right):
+    // the range searched spans every value that ties with the best.
+    for kind in [Kind::FarClip, Kind::ZTolerance, Kind::ShadowEpsilon] {
         let of_kind = |v: &Variant| v.kind == kind && v.line.is_none();
         let tried: Vec<(f64, f64)> = (first_round.iter())
             .filter(|(v, _)| v.len() == 1 && of_kind(&v[0]))
@@ -355,7 +355,14 @@ pub(crate) fn with_mask(
         values.sort_by(f64::total_cmp);
         let below = values.iter().rev().find(|&&v| v < first).copied();
         let above = values.iter().find(|&&v| v > last).copied();
-        let (low, high) = (below.unwrap_or(first / 2.0), above.unwrap_or(last * 2.0));
+        // Past the values tried: as far as the next of them would lie (the epsilons go
+        // by tens).
+        let step = if kind == Kind::ShadowEpsilon {
+            10.0
+        } else {
+            2.0
+        };
+        let (low, high) = (below.unwrap_or(first / step), above.unwrap_or(last * step));
         let near = (round_values_between(low, high).into_iter())
             .map(|value| Variant {
                 value: Some(value),
@@ -882,8 +889,8 @@ fn reflects(object: &Object) -> bool {
 }
 
 /// The values of the continuous and whole-number variants tried besides their first
-/// (spec §7.5): rows and columns off by up to three either way, a few z tolerances and
-/// far clips (round values, as students write them).
+/// (spec §7.5): rows and columns off by up to three either way, a few z tolerances, far
+/// clips and shadow epsilons (round values, as students write them).
 fn other_values() -> Vec<Variant> {
     let with = |kind: Kind, value: f64| Variant {
         value: Some(value),
@@ -896,6 +903,7 @@ fn other_values() -> Vec<Variant> {
     }
     out.extend([0.001, 0.05, 0.1, 0.2, 0.5, 1.0].map(|e| with(Kind::ZTolerance, e)));
     out.extend([10.0, 20.0, 50.0, 100.0].map(|d| with(Kind::FarClip, d)));
+    out.extend([1e-4, 1e-3, 0.01, 0.1].map(|e| with(Kind::ShadowEpsilon, e)));
     out
 }
 
