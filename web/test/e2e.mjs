@@ -290,8 +290,9 @@ async function tracesAClickedPixel(page, name) {
   console.log('ok 5 - and in the course\'s format');
 }
 
-// 6. A dropped image made with a known mistake: the command line's report, which names it.
-async function namesTheMistake(page, name, variant) {
+// 6. A dropped image made with a known mistake: the command line's report, which names it
+// (and, where `decision` is given, the decision flips the report says it takes).
+async function namesTheMistake(page, name, variant, decision) {
   assert.equal(await openExample(page, name), 'done');
   const folder = scratch;
   const text = readFileSync(join(top, 'examples', name));
@@ -313,9 +314,11 @@ async function namesTheMistake(page, name, variant) {
   assert.equal(cli.status, 1, cli.stderr);
   assert.equal(report, cli.stdout.toString());
   assert.match(report, new RegExp(`^  --variant ${variant}: `, 'm'));
+  if (decision) assert.ok(report.includes(`\n  - ${decision}`), report);
   assert.equal(await page.getAttribute('#report', 'data-verdict'), 'differ');
   assert.equal(await page.isVisible('#diff'), true);
-  console.log(`ok 6 - an image made with --variant ${variant} is diagnosed as it`);
+  console.log(`ok 6 - an image made with --variant ${variant} is diagnosed as it` +
+    (decision ? `, with the decision "${decision}"` : ''));
 }
 
 // The browser gives a click whole CSS pixels: the position, relative to an element
@@ -736,6 +739,8 @@ async function main() {
     await takesAddedTextures(page);
     await tracesAClickedPixel(page, 'spheres.txt');
     await namesTheMistake(page, 'spheres.txt', 'square-falloff');
+    await namesTheMistake(page, 'tube.txt', 'behind-root',
+      'cylinder (line 11) does not block shadow rays whose base is inside it');
     await comparesAtTheStudentsSize(page);
     await marksStaleResults(page);
     await readsAStudentsTrace(page);
