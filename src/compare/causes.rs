@@ -98,7 +98,7 @@ pub type Explained = (Vec<Diagnosis>, Option<Focus>, Vec<Cause>, Vec<Flip>);
 /// The diagnosis of `student` against `rendered` (the scene's image under `options`):
 /// the candidates the catalogue's search found, where the differences concentrate, the
 /// causes the pixels support, and the decision flips of what the whole-image causes
-/// leave ([`flips`](super::flips::flips)). `mask` says which pixels differ beyond
+/// leave ([`flips`]). `mask` says which pixels differ beyond
 /// `levels`.
 pub fn explain(
     scene: &Scene,

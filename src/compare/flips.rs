@@ -4,9 +4,9 @@
 //! Each differing pixel's path in the reference takes decisions: the camera ray hits an
 //! object, a mirror ray hits another, a shadow ray toward a light is blocked by a third
 //! or reaches the light. Each decision is forced the other way on that pixel
-//! ([`Override`], rendered by the renderer's own frame: [`super::render_forced_each`]),
-//! one and then two together, and those whose change gives the student's bytes explain
-//! the pixel. The pixels are grouped by the decision that explains the most of them
+//! ([`Override`], on the renderer's own frame, as [`render_forced`](super::render_forced)
+//! does), one and then two together, and those whose change gives the student's bytes
+//! explain the pixel. The pixels are grouped by the decision that explains the most of them
 //! (the object's before a light's where both do), and each group is described by what
 //! its decisions share: the kind of ray, the lights toward which it was cast, and the
 //! geometry where the reference took it (the ray's base inside the surface: its nearer
