@@ -491,9 +491,10 @@ impl Examined<'_> {
         let aligned = self.under.is_empty() && rendered.paths.len() == pixels;
         let may = |i: usize| !aligned || flips.iter().all(|f| rendered.paths[i].may_take(f));
         let agrees = |i: usize| self.mask[i / 64] >> (i % 64) & 1 == 0;
-        let candidates: Vec<usize> = (0..pixels).filter(|&i| agrees(i) && may(i)).collect();
-        let stride = candidates.len().div_ceil(BREAK_SAMPLE).max(1);
-        let sample: Vec<usize> = candidates.iter().copied().step_by(stride).collect();
+        // Counted first, then sampled: a list of them all would be 8 bytes a pixel.
+        let candidates = || (0..pixels).filter(|&i| agrees(i) && may(i));
+        let stride = candidates().count().div_ceil(BREAK_SAMPLE).max(1);
+        let sample: Vec<usize> = candidates().step_by(stride).collect();
         let paths: Vec<Decisions> = recorded(self.case.scene, self.case.options, &sample);
         let same = |path: &Decisions| {
             let taken = |f: &Override| {
