@@ -570,11 +570,7 @@ pub(super) fn shifted_from(
     if !moves.iter().all(|v| SHIFTS.contains(&v.kind)) || has(options, Kind::Jitter) {
         return None;
     }
-    let offset = |kind: Kind| {
-        let value = moves.iter().find(|v| v.kind == kind).and_then(|v| v.value);
-        value.unwrap_or(0.0) as i64
-    };
-    let (rows, columns) = (offset(Kind::RowOffset), offset(Kind::ColumnOffset));
+    let (rows, columns) = offsets(moves);
     let (width, height) = (options.width, options.height);
     // Whether each image is written upside down, once: `Options::row_of` looks.
     let flipped = [has(options, Kind::UpsideDown), has(moved, Kind::UpsideDown)];
@@ -588,17 +584,23 @@ pub(super) fn shifted_from(
     })
 }
 
-/// Whether output pixel i is one that a row or column offset among `variants` leaves
-/// uncovered (its ray beyond the window): a program with that mistake writes there what
-/// its buffer held, so a difference there is the offset's.
-fn uncovered(variants: &[Variant], width: usize, height: usize) -> impl Fn(usize) -> bool {
+/// The rows and the columns the offsets among `variants` move the image by (N of
+/// `row-offset=N` and `column-offset=N`; 0 without them).
+fn offsets(variants: &[Variant]) -> (i64, i64) {
     let offset = |kind: Kind| {
         (variants.iter())
             .filter(|v| v.kind == kind)
             .map(|v| v.value.unwrap_or(1.0) as i64)
             .sum::<i64>()
     };
-    let (rows, columns) = (offset(Kind::RowOffset), offset(Kind::ColumnOffset));
+    (offset(Kind::RowOffset), offset(Kind::ColumnOffset))
+}
+
+/// Whether output pixel i is one that a row or column offset among `variants` leaves
+/// uncovered (its ray beyond the window): a program with that mistake writes there what
+/// its buffer held, so a difference there is the offset's.
+fn uncovered(variants: &[Variant], width: usize, height: usize) -> impl Fn(usize) -> bool {
+    let (rows, columns) = offsets(variants);
     let beyond = |at: usize, n: i64, size: usize| {
         let traced = at as i64 + n;
         traced < 0 || traced >= size as i64

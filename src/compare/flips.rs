@@ -104,16 +104,15 @@ enum Geometry {
 impl Geometry {
     /// What the notes of one object's test tell, if anything.
     fn of(notes: &[HitNote]) -> Option<Geometry> {
-        let behind = |v: &Verdict| *v == Verdict::Behind;
         let root = |note: &HitNote| match note {
             HitNote::Root { t, verdict, .. } | HitNote::QuadricRoot { t, verdict } => {
                 Some((*t, *verdict))
             }
             _ => None,
         };
-        let roots: Vec<(f64, Verdict)> = notes.iter().filter_map(root).collect();
-        if roots.iter().any(|(t, v)| behind(v) && *t <= 0.0)
-            && roots.iter().any(|(_, v)| *v == Verdict::Counts)
+        let roots = || notes.iter().filter_map(root);
+        if roots().any(|(t, v)| v == Verdict::Behind && t <= 0.0)
+            && roots().any(|(_, v)| v == Verdict::Counts)
         {
             return Some(Geometry::BaseInside);
         }
@@ -610,13 +609,16 @@ fn words(scene: &Scene, flips: &[Override]) -> String {
                 .filter(|&(rays, _)| flips.contains(&Override::Miss { object, rays }))
                 .map(|(_, word)| word)
                 .collect();
-                said.push(match rays[..] {
-                    ["shadow"] => format!("{name} does not block shadow rays"),
-                    [one] => format!("{name} is missed by {one} rays"),
-                    [ref first @ .., last] => {
+                said.push(match rays.split_last() {
+                    Some((last, [])) if *last == "shadow" => {
+                        format!("{name} does not block shadow rays")
+                    }
+                    Some((last, [])) => format!("{name} is missed by {last} rays"),
+                    Some((last, first)) => {
                         format!("{name} is missed by {} and {last} rays", first.join(", "))
                     }
-                    [] => unreachable!("the object's own miss is among them"),
+                    // The object's own miss is among them: not reached.
+                    None => format!("{name} is missed"),
                 });
             }
             Override::Shadow {
