@@ -1194,6 +1194,7 @@ fn last_line(segment: &Segment) -> usize {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::Options;
 
     /// A number as printed with `decimals` digits after the point.
     fn printed(value: f64, decimals: i32) -> Num {
@@ -1277,5 +1278,185 @@ mod tests {
         assert_eq!(behind(t(2.0)), "");
         assert_eq!(ray_name(0), "camera ray");
         assert_eq!(ray_name(2), "reflected ray 2");
+    }
+
+    /// A real trace of a correct program (../shared/student-traces, 64x48, MAX_DIST 70)
+    /// and its scene; `None` where ../shared is absent (under `CI=true` that fails).
+    fn real_trace(scene: &str) -> Option<(Scene, String)> {
+        use std::io::Read;
+        let shared = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared");
+        if !shared.is_dir() {
+            let ci = std::env::var("CI").is_ok_and(|value| value == "true");
+            assert!(!ci, "{} is absent, and CI must have it", shared.display());
+            return None;
+        }
+        let text = std::fs::read_to_string(shared.join(format!("course-scenes/{scene}.txt")));
+        let gz = std::fs::File::open(shared.join(format!("student-traces/{scene}.dbg.txt.gz")));
+        let mut trace = String::new();
+        flate2::read::GzDecoder::new(gz.unwrap())
+            .read_to_string(&mut trace)
+            .unwrap();
+        Some((crate::load(&text.unwrap()).unwrap(), trace))
+    }
+
+    /// Pixel `pixel`'s block of a real trace, with its `nth` line (from the block's
+    /// `PIX` line) that starts with `start` passed through `edit` (a labelled value is
+    /// on the next line that is not blank), read against the reference: the checks that
+    /// disagree and did not before the edit.
+    fn edited(
+        (scene, trace): &(Scene, String),
+        pixel: (usize, usize),
+        start: &str,
+        nth: usize,
+        edit: impl Fn(&str) -> String,
+    ) -> Vec<Check> {
+        let label = format!("PIX {:4} {:4} - ", pixel.0, pixel.1);
+        let lines: Vec<&str> = trace.lines().collect();
+        let first = lines.iter().position(|l| *l == label).unwrap();
+        let last = (first + 1..lines.len())
+            .find(|&k| lines[k].starts_with("PIX "))
+            .unwrap_or(lines.len());
+        let block: Vec<String> = lines[first..last].iter().map(|l| l.to_string()).collect();
+        let mut at = (block.iter().enumerate())
+            .filter(|(_, l)| l.starts_with(start))
+            .nth(nth)
+            .map(|(k, _)| k)
+            .unwrap_or_else(|| panic!("no line {nth} starting {start:?}"));
+        if block[at].trim_end() == start {
+            at = (at + 1..block.len())
+                .find(|&k| !block[k].trim().is_empty())
+                .unwrap();
+        }
+        let mut changed = block.clone();
+        changed[at] = edit(&block[at]);
+        assert_ne!(changed[at], block[at], "the edit changes the line");
+        // The model dump the dialect is learnt from, then the one block.
+        let dump = &lines[..lines.iter().position(|l| l.starts_with("PIX ")).unwrap()];
+        let options = Options {
+            max_dist: 70.0,
+            ..Options::new(64, 48)
+        };
+        let disagree = |block: &[String]| -> Vec<Check> {
+            let text = dump.join("\n") + "\n" + &block.join("\n") + "\n";
+            crate::render::tracing(scene, &options, |frame| {
+                let (report, _) = crate::against::against(scene, frame, pixel, text.as_bytes())
+                    .unwrap_or_else(|e| panic!("{}", e.0));
+                report.compared.into_iter().filter(|c| !c.agrees).collect()
+            })
+        };
+        let before: Vec<(String, String)> = (disagree(&block).into_iter())
+            .map(|c| (c.event, c.quantity))
+            .collect();
+        (disagree(&changed).into_iter())
+            .filter(|c| !before.contains(&(c.event.clone(), c.quantity.clone())))
+            .collect()
+    }
+
+    /// The one check that disagrees.
+    fn only(checks: Vec<Check>) -> Check {
+        assert_eq!(checks.len(), 1, "{checks:#?}");
+        checks.into_iter().next().unwrap()
+    }
+
+    /// spec1's pixel (20, 20) sees the red sphere (line 11), lit by light 1 (line 42,
+    /// id 104: distance 6.441930, cos θ 0.873245) and light 4 (line 54, id 107); lights 2
+    /// and 3 face away from it.
+    const RED: (usize, usize) = (20, 20);
+
+    #[test]
+    fn a_light_block_for_another_object_is_its_hit_object_that_differs() {
+        let Some(spec1) = real_trace("spec1") else {
+            return;
+        };
+        let check = only(edited(&spec1, RED, "hit object id was", 0, |l| {
+            l.replace("101", "102")
+        }));
+        assert_eq!(check.quantity, "hit object");
+        assert_eq!(check.event, "camera ray, light 1 (point light, line 42)");
+        assert!(
+            check
+                .sentence
+                .starts_with("your diffuse block is for tiled plane (line 18) (id 102)"),
+            "{}",
+            check.sentence
+        );
+        assert!(
+            check
+                .sentence
+                .contains("the reference's hit is sphere (line 11)")
+        );
+    }
+
+    #[test]
+    fn a_direction_to_the_light_that_turns_cos_changes_the_bytes() {
+        let Some(spec1) = real_trace("spec1") else {
+            return;
+        };
+        // Printed unnormalised: (1.993473, 0.609936, 6.095286); with its x negated the
+        // angle to the normal (0.003264, -0.304968, 0.952357) barely moves, with its
+        // z negated the light is behind the surface.
+        let check = only(edited(&spec1, RED, "unit vector to light is", 0, |l| {
+            l.replace("6.095286", "-6.095286")
+        }));
+        assert_eq!(check.quantity, "direction to the light");
+        assert_eq!(check.outcome.as_deref(), Some("bytes"), "{check:#?}");
+        assert!(check.sentence.starts_with("your direction to the light is"));
+    }
+
+    #[test]
+    fn a_cos_theta_off_changes_the_bytes_and_one_within_its_digits_agrees() {
+        let Some(spec1) = real_trace("spec1") else {
+            return;
+        };
+        let check = only(edited(&spec1, RED, "theta is", 0, |l| {
+            l.replace("0.873245", "0.5")
+        }));
+        assert_eq!(check.quantity, "cos θ");
+        assert_eq!(check.outcome.as_deref(), Some("bytes"), "{check:#?}");
+        // The last digit moved by less than half a unit of it is the same cos θ.
+        let same = edited(&spec1, RED, "theta is", 0, |l| {
+            l.replace("0.873245", "0.8732454")
+        });
+        assert!(same.is_empty(), "{same:#?}");
+    }
+
+    #[test]
+    fn a_light_with_an_unknown_id_is_read_against_the_light_its_centre_names() {
+        let Some(spec1) = real_trace("spec1") else {
+            return;
+        };
+        // Light 1's block with an id no record has: its centre (0, 0, 5) and its
+        // direction still name light 1, so every value is read against light 1's term
+        // and agrees (read against light 2's, the distance and cos θ would not).
+        let found = edited(&spec1, RED, "light object id was", 0, |l| {
+            l.replace("104", "999")
+        });
+        assert!(found.is_empty(), "{found:#?}");
+    }
+
+    #[test]
+    fn a_distance_to_the_light_short_of_the_blocker_unblocks_it() {
+        let Some(spec1) = real_trace("spec1") else {
+            return;
+        };
+        // Pixel (40, 10): the tiled floor (line 18), blocked from light 2 (line 46, id 105) by
+        // the blue sphere (line 4) at t = 2.23491; light 2 is 9.391661 away. Printed as
+        // 2.0, the blocker lies beyond the student's light: the verdict changes.
+        let check = only(edited(&spec1, (40, 10), "distance to light is", 1, |l| {
+            l.replace("9.391661", "2.000000")
+        }));
+        assert_eq!(check.quantity, "distance to the light");
+        assert_eq!(check.event, "camera ray, light 2 (point light, line 46)");
+        assert_eq!(
+            check.outcome.as_deref(),
+            Some("blocked light"),
+            "{check:#?}"
+        );
+        // Printed as 9.0 the blocker still blocks: only the bytes could change, and a
+        // blocked light adds nothing, so nothing does.
+        let check = only(edited(&spec1, (40, 10), "distance to light is", 1, |l| {
+            l.replace("9.391661", "9.000000")
+        }));
+        assert_eq!(check.outcome, None, "{check:#?}");
     }
 }

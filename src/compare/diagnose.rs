@@ -294,9 +294,8 @@ pub(crate) fn with_mask(
     let paths = super::involved(scene, options, &sample[..*split]);
     let agreeing_paths = super::involved(scene, options, &sample[*split..]);
     let focus = focus(scene, &paths, &agreeing_paths);
-    let mut candidates: Vec<Variant> = (Variant::tried())
-        .filter(|v| v.kernel() != Some(options.kernel))
-        .collect();
+    let held = options.all_variants();
+    let mut candidates: Vec<Variant> = (Variant::tried()).filter(|v| !held.contains(v)).collect();
     candidates.extend(other_values());
     candidates.extend(stopped(scene));
     candidates.extend(scoped(scene, &paths));

@@ -617,10 +617,6 @@ impl<const PATHS: bool> Recorder for Margins<'_, '_, PATHS> {
     fn tested(&mut self, object: usize, t: Option<f64>, notes: &[HitNote]) {
         self.test(object, t, notes);
     }
-
-    fn settled(&self) -> bool {
-        self.surest_blocker >= self.sizes.reach
-    }
 }
 
 #[cfg(test)]

@@ -86,8 +86,8 @@ impl Query for EveryObject {
 
 /// The answer, and every object that comes within the reach (a share of the distance,
 /// at most [`MARGIN_REACH`](super::record::MARGIN_REACH)) of changing it, each test's decisions told: the margins of
-/// `compare`'s fragile pixels. A shadow query goes on past its first blocker until the
-/// recorder is sure of one ([`Recorder::settled`]).
+/// `compare`'s fragile pixels. With a reach, a shadow query tests every object that may
+/// block it, not only the first: the shadow is as sure as the surest of its blockers.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Near(pub(crate) f64);
 
@@ -404,9 +404,8 @@ impl<'a, B: Rulebook> Objects<'a, B> {
         let dist = self.rules.far().map_or(dist, |far| dist.min(far));
         let blocks =
             |index: usize, t: f64| t > least && t < dist && self.boxes.admits(index, ray, t);
-        // A query of margins tests blockers until the recorder is sure of one: the
-        // shadow is as sure as the surest of them.
-        let every_blocker = margins::<Q>();
+        // A query of margins tests every blocker: the shadow is as sure as the surest.
+        let every_blocker = margins::<Q>() && query.reach() > 0.0;
         let mut blocker = None;
         let mut test = |index: usize, rec: &mut R| {
             if let Some(t) = test_and_record::<K, Q, R>(index, &objects[index], ray, query, rec)
@@ -415,7 +414,7 @@ impl<'a, B: Rulebook> Objects<'a, B> {
             {
                 blocker = Some((index, t));
             }
-            blocker.is_some() && (!every_blocker || rec.settled())
+            blocker.is_some() && !every_blocker
         };
         if let Some(bvh) = self.bvh.as_ref().filter(|_| !Q::EVERY_OBJECT) {
             let limit = dist * (1.0 + query.reach());

@@ -17,12 +17,6 @@ pub(crate) trait Recorder {
     /// Takes one event; `event` is called only by a recorder that keeps it.
     fn record(&mut self, event: impl FnOnce() -> Event);
 
-    /// Whether the shadow query under way is decided for this recorder, under a query of
-    /// margins ([`Near`](super::objects::Near)), which tests blockers until one is sure.
-    fn settled(&self) -> bool {
-        true
-    }
-
     /// Takes one object's test: its t and the shape's decisions (told where the query
     /// wants them, [`Query::NOTES`](super::objects::Query::NOTES)).
     fn tested(&mut self, object: usize, t: Option<f64>, notes: &[HitNote]) {

@@ -435,15 +435,6 @@ impl Variant {
         Variant::all().filter(|v| v.kind != Kind::MaxDist)
     }
 
-    /// The kernel this variant renders with, if it is one of the kernels'.
-    pub fn kernel(self) -> Option<KernelChoice> {
-        match self.kind {
-            Kind::Textbook => Some(KernelChoice::Textbook),
-            Kind::TextbookF32 => Some(KernelChoice::TextbookF32),
-            _ => None,
-        }
-    }
-
     /// Its row of [`VARIANTS`]: id, rule, what it does instead.
     pub fn row(self) -> &'static Row {
         self.kind.row()
@@ -686,21 +677,12 @@ impl Options {
                 variant.id()
             )
         };
-        match (variant.kind, variant.value) {
-            (Kind::MaxDist, Some(d)) => {
-                if self.max_dist != DEFAULT_MAX_DIST {
-                    return Err(conflict(format!("max-dist={}", self.max_dist)));
+        match variant.row().site {
+            Site::Option => {
+                if let Some(first) = option_taken(self, variant.kind) {
+                    return Err(conflict(first));
                 }
-                options.max_dist = d;
-            }
-            (Kind::Textbook | Kind::TextbookF32, _) => {
-                if self.kernel != KernelChoice::Accurate {
-                    return Err(conflict(self.kernel.name().to_string()));
-                }
-                options.kernel = match variant.kind {
-                    Kind::Textbook => KernelChoice::Textbook,
-                    _ => KernelChoice::TextbookF32,
-                };
+                set_option(&mut options, variant);
             }
             _ => {
                 let group = variant.row().group;
@@ -728,17 +710,7 @@ impl Options {
     /// in the table's order.
     pub fn all_variants(&self) -> Vec<Variant> {
         let mut all: Vec<Variant> = self.variants.iter().collect();
-        if self.max_dist != DEFAULT_MAX_DIST {
-            all.push(Variant {
-                value: Some(self.max_dist),
-                ..Variant::of(Kind::MaxDist)
-            });
-        }
-        match self.kernel {
-            KernelChoice::Textbook => all.push(Variant::of(Kind::Textbook)),
-            KernelChoice::TextbookF32 => all.push(Variant::of(Kind::TextbookF32)),
-            _ => {}
-        }
+        all.extend(option_variants(self));
         all.sort_by_key(|v| (v.kind, v.line));
         all
     }
@@ -750,6 +722,44 @@ impl Options {
         let upside_down = self.variants.iter().any(|v| v.kind == Kind::UpsideDown);
         output_row(y, self.height, upside_down)
     }
+}
+
+/// The variants whose rule is a render option ([`Site::Option`]: MAX_DIST and the
+/// kernel), written into their fields of [`Options`] here and read back from them by
+/// [`option_variants`]: the one place that knows which field each sets.
+fn set_option(options: &mut Options, variant: Variant) {
+    match variant.kind {
+        Kind::MaxDist => options.max_dist = variant.value.unwrap_or(DEFAULT_MAX_DIST),
+        Kind::Textbook => options.kernel = KernelChoice::Textbook,
+        Kind::TextbookF32 => options.kernel = KernelChoice::TextbookF32,
+        kind => unreachable!("{} is not a render option", kind.row().id),
+    }
+}
+
+/// What the field that option variant `kind` sets already holds in `options`, where it is
+/// not the default render's: `max-dist=70`, or the kernel's name (`stable` has no variant).
+fn option_taken(options: &Options, kind: Kind) -> Option<String> {
+    match kind {
+        Kind::MaxDist => {
+            (options.max_dist != DEFAULT_MAX_DIST).then(|| format!("max-dist={}", options.max_dist))
+        }
+        _ => (options.kernel != KernelChoice::Accurate).then(|| options.kernel.name().into()),
+    }
+}
+
+/// The option variants that `options` hold: each field that differs from the default
+/// render's, as the variant that sets it (the inverse of [`set_option`]).
+fn option_variants(options: &Options) -> impl Iterator<Item = Variant> {
+    let max_dist = (options.max_dist != DEFAULT_MAX_DIST).then(|| Variant {
+        value: Some(options.max_dist),
+        ..Variant::of(Kind::MaxDist)
+    });
+    let kernel = match options.kernel {
+        KernelChoice::Accurate | KernelChoice::Stable => None,
+        KernelChoice::Textbook => Some(Variant::of(Kind::Textbook)),
+        KernelChoice::TextbookF32 => Some(Variant::of(Kind::TextbookF32)),
+    };
+    max_dist.into_iter().chain(kernel)
 }
 
 /// The output row of an image `height` rows high that holds pixel row `y` (0 at the
