@@ -5,7 +5,8 @@
 //! `scene_file` reads the text into records (syntax only), [`scene`] validates them into
 //! typed lights and [`shapes`], [`render`](mod@render) traces them as the course's C
 //! program did, [`compare`] sets a student's image beside the reference, and
-//! [`image_output`] writes PPM or PNG (docs/architecture.md has a paragraph per module).
+//! [`image_output`] writes PPM or PNG; `grade` grades a class's images (docs/architecture.md
+//! has a paragraph per module).
 //! The format and the rendering rules are those of the project's spec (`spec §N` in the
 //! comments); the formulas are those of the course notes.
 //!
@@ -21,6 +22,10 @@
 pub mod against;
 pub mod compare;
 pub mod error;
+#[cfg(feature = "grade")]
+pub mod files;
+#[cfg(feature = "grade")]
+pub mod grade;
 pub mod image_output;
 pub mod render;
 pub mod scene;

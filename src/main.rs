@@ -3,7 +3,7 @@
 mod cli;
 
 use clap::Parser;
-use cli::{Args, Command, Failure, say};
+use cli::{Args, Command, say};
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
@@ -19,9 +19,9 @@ fn main() -> ExitCode {
     match result {
         Ok(true) => ExitCode::SUCCESS,
         Ok(false) => ExitCode::from(1),
-        Err(Failure(message, code)) => {
-            say(&message);
-            ExitCode::from(code)
+        Err(failure) => {
+            say(&failure.message());
+            ExitCode::from(failure.code)
         }
     }
 }

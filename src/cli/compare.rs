@@ -3,15 +3,16 @@
 //! worst pixels with the `trace` command that explains each, and with `--diagnose` the
 //! student's likely mistake.
 
-use super::io::{MAX_INPUT, emit_to_stdout, open_regular, read_all, same_file, text_of};
+use super::io::emit_to_stdout;
 use super::render::write_image;
 use super::{Failure, HowArgs, output_file, pixels, size, threads};
 use legacy_rt::compare::read::{Content, DEFAULT_MAX_PIXELS, content};
 use legacy_rt::compare::{self, Settings, Tolerance, Verdict};
 use legacy_rt::error::escaped;
+use legacy_rt::files::{MAX_INPUT, open_regular, read_all, read_image, same_file, text_of};
 use std::fs::File;
-use std::io::{BufReader, Read, Seek, SeekFrom};
-use std::path::{Path, PathBuf};
+use std::io::{Read, Seek, SeekFrom};
+use std::path::PathBuf;
 
 /// Examples for `compare --help`.
 pub const EXAMPLES: &str = "\
@@ -97,7 +98,8 @@ pub struct CompareArgs {
     how: HowArgs,
 }
 
-/// How close a student's image must be: what `compare` and `grade` share.
+/// How close a student's image must be: what `compare` and `grade` share
+/// ([`legacy_rt::grade::Closeness`] as flags).
 #[derive(clap::Args, Debug)]
 pub struct Closeness {
     /// The largest per-channel difference, in byte levels (0-255), that counts as equal
@@ -117,13 +119,18 @@ pub struct Closeness {
 }
 
 impl Closeness {
+    /// The flags as the library takes them.
+    pub fn closeness(&self) -> legacy_rt::grade::Closeness {
+        legacy_rt::grade::Closeness {
+            levels: Some(self.tolerance),
+            allow: self.allow,
+            precision: self.precision,
+        }
+    }
+
     /// The tolerance, with `levels` instead of `--tolerance` if given.
     pub fn tolerance(&self, levels: Option<u8>) -> Tolerance {
-        Tolerance {
-            levels: levels.unwrap_or(self.tolerance),
-            allow: self.allow.unwrap_or(Tolerance::default().allow * 100.0) / 100.0,
-            precision: self.precision.unwrap_or(Tolerance::default().precision),
-        }
+        self.closeness().tolerance(levels)
     }
 }
 
@@ -166,21 +173,8 @@ fn first_bytes(file: &mut File, shown: &str) -> Result<Vec<u8>, Failure> {
         .take(16)
         .read_to_end(&mut start)
         .and_then(|_| file.seek(SeekFrom::Start(0)))
-        .map_err(|error| Failure(format!("error: cannot read {shown}: {error}"), 2))?;
+        .map_err(|error| Failure::other(format!("cannot read {shown}: {error}")))?;
     Ok(start)
-}
-
-/// An image file (a regular file, decoded from the disk as it is read), or exit 2 naming
-/// it and what is wrong.
-pub(super) fn read_image(
-    path: &Path,
-    role: &str,
-    max_pixels: u64,
-) -> Result<legacy_rt::Image, Failure> {
-    let file = open_regular(path)?;
-    let shown = escaped(&path.display().to_string());
-    compare::read::image_named(BufReader::new(file), max_pixels, &shown, role)
-        .map_err(|message| Failure(message, 2))
 }
 
 /// Refuses a `--diff` path that is a symbolic link (dangling or not) or names something
@@ -190,12 +184,9 @@ pub(super) fn read_image(
 fn diff_target(path: &std::path::Path) -> Result<(), Failure> {
     let shown = escaped(&path.display().to_string());
     let refuse = |what: &str| {
-        Err(Failure(
-            format!(
-                "error: --diff {shown} is {what}: the diff image is written only to a new or regular file"
-            ),
-            2,
-        ))
+        Err(Failure::other(format!(
+            "--diff {shown} is {what}: the diff image is written only to a new or regular file"
+        )))
     };
     match std::fs::symlink_metadata(path) {
         Ok(meta) if meta.file_type().is_symlink() => refuse("a symbolic link"),
@@ -208,7 +199,7 @@ fn diff_target(path: &std::path::Path) -> Result<(), Failure> {
 /// Compares; `Ok(true)` when the images match.
 pub fn run(args: &CompareArgs) -> Result<bool, Failure> {
     // Every failure of `compare` is exit 2, whatever it would be for rendering.
-    run_inner(args).map_err(|Failure(message, _)| Failure(message, 2))
+    run_inner(args).map_err(|failure| failure.with_code(2))
 }
 
 fn run_inner(args: &CompareArgs) -> Result<bool, Failure> {
@@ -216,14 +207,10 @@ fn run_inner(args: &CompareArgs) -> Result<bool, Failure> {
         && (same_file(diff, &args.student) || same_file(diff, &args.reference))
     {
         // `--diff mine.ppm`, or a hard link to it, would replace the image being graded.
-        return Err(Failure(
-            format!(
-                "error: --diff {} names a file being compared; give the diff image \
-                 another name",
-                escaped(&diff.display().to_string())
-            ),
-            2,
-        ));
+        return Err(Failure::other(format!(
+            "--diff {} names a file being compared; give the diff image another name",
+            escaped(&diff.display().to_string())
+        )));
     }
     if let Some(diff) = &args.diff {
         diff_target(diff)?;
@@ -253,7 +240,7 @@ fn run_inner(args: &CompareArgs) -> Result<bool, Failure> {
         true => {
             let bytes = read_all(first, &args.reference, MAX_INPUT)?;
             let scene = legacy_rt::load(&text_of(bytes))
-                .map_err(|error| Failure(format!("{shown}: {error}"), 2))?;
+                .map_err(|error| Failure::load(Some(shown.clone()), error, 2))?;
             let given = (Some(student.width as u64), Some(student.height as u64));
             let (w, h) = size(given, &scene)?;
             let options = legacy_rt::Options {
@@ -267,11 +254,8 @@ fn run_inner(args: &CompareArgs) -> Result<bool, Failure> {
         }
         false => {
             if args.diagnose {
-                return Err(Failure(
-                    "error: --diagnose needs the scene: give the scene file first, not an \
-                     image"
-                        .to_string(),
-                    2,
+                return Err(Failure::other(
+                    "--diagnose needs the scene: give the scene file first, not an image",
                 ));
             }
             drop(first);
@@ -280,8 +264,8 @@ fn run_inner(args: &CompareArgs) -> Result<bool, Failure> {
         }
     };
     let with_scene = scene.as_ref().zip(options.as_ref());
-    let mut report = compare::report(&reference, &student, with_scene, &settings)
-        .map_err(|error| Failure(format!("error: {error}"), 2))?;
+    let mut report =
+        compare::report(&reference, &student, with_scene, &settings).map_err(Failure::other)?;
     // The choices that made the reference, when it was rendered from the scene.
     let choices = options.is_some().then_some(choices);
     if let Some((options, choices)) = options.as_ref().zip(choices.as_ref()) {
@@ -290,7 +274,7 @@ fn run_inner(args: &CompareArgs) -> Result<bool, Failure> {
     }
     if let Some(diff) = diff {
         let image = compare::diff_image(&reference, &student, args.close.tolerance)
-            .map_err(|error| Failure(format!("error: {error}"), 2))?;
+            .map_err(Failure::other)?;
         write_image(&image, diff.format, Some(diff))?;
     }
     emit_report(args, &report, &shown, &student_shown, choices.as_ref())?;
@@ -318,8 +302,7 @@ fn emit_report(
 ) -> Result<(), Failure> {
     let out = match args.json {
         true => {
-            let json = serde_json::to_string_pretty(report)
-                .map_err(|error| Failure(format!("error: {error}"), 2))?;
+            let json = serde_json::to_string_pretty(report).map_err(Failure::other)?;
             json + "\n"
         }
         false => compare::text::text(report, reference, student, choices),

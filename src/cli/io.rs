@@ -1,15 +1,10 @@
-//! Standard input and output, and the files the command line reads: the scene text in,
-//! the image or the text out, and files that students uploaded.
+//! Standard input and output: the scene text in, the image or the text out (the files a
+//! user names are read through `legacy_rt::files`).
 
 use super::Failure;
-use std::fs::File;
 use std::io::{IsTerminal, Read};
-use std::path::Path;
 
-/// The largest scene text accepted on standard input, and the largest text file read.
-pub const MAX_INPUT: u64 = 256 << 20;
-
-/// The scene text from standard input, at most `MAX_INPUT` bytes.
+/// The scene text from standard input, at most `legacy_rt::files::MAX_INPUT` bytes.
 pub fn read_scene() -> Result<String, Failure> {
     let stdin = std::io::stdin();
     if stdin.is_terminal() {
@@ -20,20 +15,23 @@ pub fn read_scene() -> Result<String, Failure> {
     }
     // A file's own size, so that its bytes are read into one buffer of that size rather
     // than a buffer doubled past it (a 52 MB scene took 64 MiB).
-    let mut text = Vec::with_capacity(stdin_file_size().min(MAX_INPUT + 1) as usize);
-    if let Err(error) = stdin.take(MAX_INPUT + 1).read_to_end(&mut text) {
-        return Err(Failure(
-            format!("error: cannot read standard input: {error}"),
-            2,
-        ));
+    let mut text =
+        Vec::with_capacity(stdin_file_size().min(legacy_rt::files::MAX_INPUT + 1) as usize);
+    if let Err(error) = stdin
+        .take(legacy_rt::files::MAX_INPUT + 1)
+        .read_to_end(&mut text)
+    {
+        return Err(Failure::other(format!(
+            "cannot read standard input: {error}"
+        )));
     }
-    if text.len() as u64 > MAX_INPUT {
-        let mib = MAX_INPUT >> 20;
-        return Err(super::scene_failure(format!(
+    if text.len() as u64 > legacy_rt::files::MAX_INPUT {
+        let mib = legacy_rt::files::MAX_INPUT >> 20;
+        return Err(Failure::scene(format!(
             "the scene is larger than {mib} MiB, the most this program reads"
         )));
     }
-    Ok(text_of(text))
+    Ok(legacy_rt::files::text_of(text))
 }
 
 /// The size of the regular file on standard input, 0 for anything else (a pipe, a
@@ -51,12 +49,6 @@ fn stdin_file_size() -> u64 {
     {
         0
     }
-}
-
-/// Bytes as text: valid UTF-8 (nearly every scene) becomes the String without a copy.
-pub fn text_of(bytes: Vec<u8>) -> String {
-    String::from_utf8(bytes)
-        .unwrap_or_else(|invalid| String::from_utf8_lossy(invalid.as_bytes()).into_owned())
 }
 
 /// The file standard input reads, as the reports' commands name it: relative to the
@@ -92,79 +84,8 @@ pub fn emit_pieces_to_stdout(pieces: &[&[u8]]) -> Result<(), Failure> {
         Ok(()) => Ok(()),
         // The reader went away (`| head`): end quietly.
         Err(error) if error.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
-        Err(error) => Err(Failure(
-            format!("error: cannot write to standard output: {error}"),
-            2,
-        )),
-    }
-}
-
-/// A file a user named, opened for reading only if it is a regular file: a FIFO, a
-/// socket or a device would block the open or the read, or never end. Opened without
-/// blocking, then asked what it is, so that even a FIFO with no writer is an error at
-/// once. `shown` names it in messages.
-pub fn open_regular(path: &Path) -> Result<File, Failure> {
-    let shown = legacy_rt::error::escaped(&path.display().to_string());
-    let cannot = |error: std::io::Error| Failure(format!("error: cannot read {shown}: {error}"), 2);
-    let mut options = std::fs::OpenOptions::new();
-    options.read(true);
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::OpenOptionsExt;
-        options.custom_flags(libc::O_NONBLOCK);
-    }
-    let file = options.open(path).map_err(cannot)?;
-    let kind = file.metadata().map_err(cannot)?.file_type();
-    if kind.is_dir() {
-        return Err(Failure(
-            format!("error: {shown} is a folder, not a file"),
-            2,
-        ));
-    }
-    if !kind.is_file() {
-        return Err(Failure(
-            format!(
-                "error: {shown} is not a regular file (a pipe, socket or device), and only \
-                 files are read"
-            ),
-            2,
-        ));
-    }
-    Ok(file)
-}
-
-/// The rest of an open file's bytes, at most `limit`; `path` names it in messages.
-pub fn read_all(file: File, path: &Path, limit: u64) -> Result<Vec<u8>, Failure> {
-    let shown = legacy_rt::error::escaped(&path.display().to_string());
-    let mut bytes = Vec::new();
-    file.take(limit + 1)
-        .read_to_end(&mut bytes)
-        .map_err(|error| Failure(format!("error: cannot read {shown}: {error}"), 2))?;
-    if bytes.len() as u64 > limit {
-        let mib = limit >> 20;
-        return Err(Failure(
-            format!("error: {shown} is larger than {mib} MiB"),
-            2,
-        ));
-    }
-    Ok(bytes)
-}
-
-/// Whether two names are one file: the same device and inode, so that a hard link, a
-/// symbolic link or another spelling of the path counts. A name that does not exist is
-/// no file.
-pub fn same_file(a: &Path, b: &Path) -> bool {
-    match (std::fs::metadata(a), std::fs::metadata(b)) {
-        #[cfg(unix)]
-        (Ok(a), Ok(b)) => {
-            use std::os::unix::fs::MetadataExt;
-            (a.dev(), a.ino()) == (b.dev(), b.ino())
-        }
-        #[cfg(not(unix))]
-        (Ok(_), Ok(_)) => match (a.canonicalize(), b.canonicalize()) {
-            (Ok(a), Ok(b)) => a == b,
-            _ => false,
-        },
-        _ => false,
+        Err(error) => Err(Failure::other(format!(
+            "cannot write to standard output: {error}"
+        ))),
     }
 }

@@ -167,7 +167,7 @@ impl HowArgs {
 
     /// Fails on an option no render can take (before the scene is read).
     pub fn check(&self) -> Result<(), Failure> {
-        self.choices().check().map_err(usage)
+        self.choices().check().map_err(Failure::usage)
     }
 
     /// The library's options for a `width` x `height` image of `scene`.
@@ -178,7 +178,7 @@ impl HowArgs {
         height: u64,
     ) -> Result<legacy_rt::Options, Failure> {
         let choices = self.choices();
-        (choices.options(scene, width as usize, height as usize)).map_err(usage)
+        (choices.options(scene, width as usize, height as usize)).map_err(Failure::usage)
     }
 }
 
@@ -247,13 +247,121 @@ pub fn output_file(path: Option<&std::path::Path>) -> Result<Option<OutputFile>,
     let Some(path) = path else {
         return Ok(None);
     };
-    let output = OutputFile::check(path).map_err(|error| Failure(format!("error: {error}"), 2))?;
+    let output = OutputFile::check(path).map_err(Failure::other)?;
     interrupt::remove_partial_file_on_interrupt();
     Ok(Some(output))
 }
 
-/// An error of the command line, the scene or the output, with its exit status.
-pub struct Failure(pub String, pub u8);
+/// Why a command failed, and its exit status. `main` says it: `error: ` and the
+/// message, the pointer to `--help` after a bad command line, and a scene's load error as
+/// the block of spec §2.4 (which says `error: ` itself).
+#[derive(Debug)]
+pub struct Failure {
+    what: What,
+    /// The exit status.
+    pub code: u8,
+}
+
+/// What a [`Failure`] says.
+#[derive(Debug)]
+enum What {
+    /// A bad command line.
+    Usage(String),
+    /// A sentence about the scene, a file or the output.
+    Message(String),
+    /// A scene that does not load, after its file's name where it was named.
+    Load {
+        file: Option<String>,
+        error: Box<legacy_rt::SceneError>,
+    },
+    /// Nothing more to say: the report on standard output said it.
+    Quiet,
+}
+
+impl Failure {
+    /// A bad command line: exit status 2.
+    pub fn usage(message: String) -> Failure {
+        Failure {
+            what: What::Usage(message),
+            code: 2,
+        }
+    }
+
+    /// A failure caused by the scene: exit status 1, as for a scene that cannot be
+    /// loaded.
+    pub fn scene(message: String) -> Failure {
+        Failure {
+            what: What::Message(message),
+            code: 1,
+        }
+    }
+
+    /// A file, the output or the machine failed: exit status 2.
+    pub fn other(message: impl std::fmt::Display) -> Failure {
+        Failure {
+            what: What::Message(message.to_string()),
+            code: 2,
+        }
+    }
+
+    /// A scene that does not load (`file` names it where it was named): exit status
+    /// `code`.
+    pub fn load(file: Option<String>, error: legacy_rt::SceneError, code: u8) -> Failure {
+        Failure {
+            what: What::Load {
+                file,
+                error: Box::new(error),
+            },
+            code,
+        }
+    }
+
+    /// Exit status `code`, with nothing to say.
+    pub fn quiet(code: u8) -> Failure {
+        Failure {
+            what: What::Quiet,
+            code,
+        }
+    }
+
+    /// The same failure with exit status `code`.
+    pub fn with_code(self, code: u8) -> Failure {
+        Failure { code, ..self }
+    }
+
+    /// What standard error gets.
+    pub fn message(&self) -> String {
+        match &self.what {
+            What::Usage(message) => {
+                format!("error: {message}\n\nFor more information, try '--help'.")
+            }
+            What::Message(message) => format!("error: {message}"),
+            What::Load {
+                file: Some(file),
+                error,
+            } => format!("{file}: {error}"),
+            What::Load { file: None, error } => error.to_string(),
+            What::Quiet => String::new(),
+        }
+    }
+}
+
+impl From<legacy_rt::files::FileError> for Failure {
+    fn from(error: legacy_rt::files::FileError) -> Failure {
+        Failure::other(error)
+    }
+}
+
+impl From<legacy_rt::grade::GradeError> for Failure {
+    fn from(error: legacy_rt::grade::GradeError) -> Failure {
+        use legacy_rt::grade::GradeError;
+        match error {
+            GradeError::Usage(message) => Failure::usage(message),
+            GradeError::Scene { file, error } => Failure::load(Some(file), *error, 2),
+            other => Failure::other(other),
+        }
+    }
+}
 
 /// Writes a line to standard error. A closed standard error (`2>&1 | head`) is no reason
 /// to fail, and `eprintln!` would panic there.
@@ -261,19 +369,6 @@ pub fn say(message: &str) {
     if !message.is_empty() {
         let _ = writeln!(std::io::stderr().lock(), "{message}");
     }
-}
-
-/// A failure caused by the scene: exit status 1, as for a scene that cannot be loaded.
-pub fn scene_failure(message: String) -> Failure {
-    Failure(format!("error: {message}"), 1)
-}
-
-/// A bad command line: exit status 2.
-pub fn usage(message: String) -> Failure {
-    Failure(
-        format!("error: {message}\n\nFor more information, try '--help'."),
-        2,
-    )
 }
 
 /// The image size: W and H as given, or derived from the world window (spec §1). A bad
@@ -292,10 +387,10 @@ pub fn size(
         return Ok((width, height));
     };
     if given.1.is_some() {
-        return Err(usage(problem));
+        return Err(Failure::usage(problem));
     }
     let (ww, wh) = (scene.window.x, scene.window.y);
-    Err(scene_failure(format!(
+    Err(Failure::scene(format!(
         "{problem}: that size follows from the scene's world window, {ww} x {wh}; \
          give both W and H on the command line, e.g. legacy-rt 640 480 < scene.txt"
     )))

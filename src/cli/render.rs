@@ -2,7 +2,7 @@
 
 use super::interrupt;
 use super::io::{emit_pieces_to_stdout, emit_to_stdout, read_scene};
-use super::{Failure, RenderArgs, output_file, say, size, usage};
+use super::{Failure, RenderArgs, output_file, say, size};
 use legacy_rt::image_output::file::OutputFile;
 use legacy_rt::image_output::{self, Format};
 use legacy_rt::render::{self, Show, object_colour};
@@ -12,7 +12,7 @@ use std::io::IsTerminal;
 pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     let writing_to_terminal = args.output.is_none() && std::io::stdout().is_terminal();
     if writing_to_terminal && !args.dump {
-        return Err(usage(
+        return Err(Failure::usage(
             "standard output is a terminal; redirect it to a file (> image.ppm) or use -o FILE"
                 .into(),
         ));
@@ -22,7 +22,7 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     let text = read_scene()?;
     // Read on the render's threads too: the same scene or error on any number.
     let scene = legacy_rt::scene::load_on(&text, &legacy_rt::scene::Disk, args.threads)
-        .map_err(|error| Failure(error.to_string(), 1))?;
+        .map_err(|error| Failure::load(None, error, 1))?;
     // The scene holds nothing of its text: free it before the render's own memory.
     drop(text);
     if args.dump {
@@ -70,11 +70,11 @@ pub fn write_image(
     output: Option<OutputFile>,
 ) -> Result<(), Failure> {
     let encoded = image_output::encode(image, format)
-        .map_err(|error| Failure(format!("error: cannot encode the image: {error}"), 2))?;
+        .map_err(|error| Failure::other(format!("cannot encode the image: {error}")))?;
     match output {
         Some(output) => output
             .write(&encoded.pieces(), interrupt::partial_file)
-            .map_err(|error| Failure(format!("error: {error}"), 2)),
+            .map_err(Failure::other),
         None => emit_pieces_to_stdout(&encoded.pieces()),
     }
 }

@@ -1,9 +1,10 @@
 //! `legacy-rt trace X Y [W H]`: the trace of one pixel, readable or in the course's
 //! format, and with `-o` the image with that pixel marked.
 
-use super::io::{emit_to_stdout, open_regular, read_scene, stdin_name};
+use super::io::{emit_to_stdout, read_scene, stdin_name};
 use super::render::{render_with_progress, write_image};
-use super::{Failure, HowArgs, output_file, pixels, size, usage};
+use super::{Failure, HowArgs, output_file, pixels, size};
+use legacy_rt::files::open_regular;
 use std::path::{Path, PathBuf};
 
 /// Examples for `trace --help`.
@@ -91,7 +92,7 @@ pub fn run(args: &TraceArgs) -> Result<(), Failure> {
         ([x, y, w], _) => (Some((*x, *y)), (Some(*w), None)),
         ([x, y, w, h], _) => (Some((*x, *y)), (Some(*w), Some(*h))),
         _ => {
-            return Err(usage(
+            return Err(Failure::usage(
                 "trace takes X Y [W H] (a pixel), or with --against FILE, [W H] (every pixel \
                  of the file) or X Y W H"
                     .into(),
@@ -99,12 +100,14 @@ pub fn run(args: &TraceArgs) -> Result<(), Failure> {
         }
     };
     if let (None, (Some(w), Some(h))) = (pixel, given) {
-        super::pixels(&w.to_string()).map_err(usage)?;
-        super::pixels(&h.to_string()).map_err(usage)?;
+        super::pixels(&w.to_string()).map_err(Failure::usage)?;
+        super::pixels(&h.to_string()).map_err(Failure::usage)?;
     }
     let output = output_file(args.output.as_deref())?;
     if pixel.is_none() && output.is_some() {
-        return Err(usage("-o marks one pixel: give X Y W H with it".into()));
+        return Err(Failure::usage(
+            "-o marks one pixel: give X Y W H with it".into(),
+        ));
     }
     args.how.check()?;
     // The student's file is opened before the scene is read: an unreadable FILE fails at
@@ -114,7 +117,7 @@ pub fn run(args: &TraceArgs) -> Result<(), Failure> {
         None => None,
     };
     let text = read_scene()?;
-    let scene = legacy_rt::load(&text).map_err(|error| Failure(error.to_string(), 1))?;
+    let scene = legacy_rt::load(&text).map_err(|error| Failure::load(None, error, 1))?;
     let (width, height) = size(given, &scene)?;
     let options = args.how.options(&scene, width, height)?;
     let Some((x, y)) = pixel else {
@@ -122,7 +125,7 @@ pub fn run(args: &TraceArgs) -> Result<(), Failure> {
         return whole(&scene, &options, &args.how.choices(), path, file, args.json);
     };
     if x >= width || y >= height {
-        return Err(usage(format!(
+        return Err(Failure::usage(format!(
             "pixel ({x}, {y}) is outside the {width}x{height} image: X must be below {width} \
              and Y below {height}, with (0, 0) at the lower left"
         )));
@@ -147,7 +150,7 @@ pub fn run(args: &TraceArgs) -> Result<(), Failure> {
     }
     emit_to_stdout(text.as_bytes())?;
     match differs {
-        true => Err(Failure(String::new(), 1)),
+        true => Err(Failure::quiet(1)),
         false => Ok(()),
     }
 }
@@ -160,7 +163,7 @@ fn stream(file: std::fs::File) -> std::io::BufReader<std::fs::File> {
 /// The message of a file that cannot be read against the reference.
 fn unreadable(path: &Path, unreadable: legacy_rt::against::Unreadable) -> Failure {
     let shown = legacy_rt::error::escaped(&path.display().to_string());
-    Failure(format!("error: {}", unreadable.about(&shown)), 2)
+    Failure::other(unreadable.about(&shown))
 }
 
 /// One pixel of the student's trace read against the reference's: the report, and
@@ -204,13 +207,14 @@ fn whole(
         legacy_rt::against::whole(scene, frame, stream(file))
     })
     .map_err(|error| {
-        let mut failure = unreadable(path, error);
-        failure.0 += &format!(
-            " (with --against, two numbers are the image's size W H, here {}x{}; to read one \
-             pixel, give X Y W H)",
-            options.width, options.height
-        );
-        failure
+        let shown = legacy_rt::error::escaped(&path.display().to_string());
+        Failure::other(format!(
+            "{} (with --against, two numbers are the image's size W H, here {}x{}; to read \
+             one pixel, give X Y W H)",
+            error.about(&shown),
+            options.width,
+            options.height
+        ))
     })?;
     let (w, h) = (options.width, options.height);
     let flags = choices.flags();
@@ -238,6 +242,6 @@ fn whole(
     emit_to_stdout(text.as_bytes())?;
     match report.agrees() {
         true => Ok(()),
-        false => Err(Failure(String::new(), 1)),
+        false => Err(Failure::quiet(1)),
     }
 }

@@ -385,14 +385,48 @@ pub(crate) fn guarded<T>(decode: impl FnOnce() -> T) -> Result<T, ReadError> {
     })
 }
 
-/// The image in `reader`, or the message `legacy-rt compare` gives: `shown` names the
-/// file and `role` what it is ("student's image" or "reference image").
+/// Why an image a user named is not read: [`ReadError`] with the file's name and what it
+/// is for, as `legacy-rt compare` and the page say it.
+#[derive(Debug, thiserror::Error)]
+pub enum ImageFileError {
+    /// Text where the student's image was expected (a scene file given second, say).
+    #[error("{shown} (the {role}) is not a PPM or PNG image{hint}")]
+    Text {
+        /// The file's name, escaped.
+        shown: String,
+        /// What the image is for: "student's image" or "reference image".
+        role: String,
+        /// What it looks like, if it looks like something.
+        hint: &'static str,
+    },
+    /// The image cannot be read.
+    #[error("{shown} (the {role}): {error}{hint}", hint = limit_hint(.error))]
+    Read {
+        /// The file's name, escaped.
+        shown: String,
+        /// What the image is for.
+        role: String,
+        /// Why it cannot be read.
+        error: ReadError,
+    },
+}
+
+/// What raises the limit an image went past, if it went past one.
+fn limit_hint(error: &ReadError) -> &'static str {
+    match error {
+        ReadError::TooLarge { .. } => " (--max-pixels raises the limit)",
+        _ => "",
+    }
+}
+
+/// The image in `reader`, or why not: `shown` names the file and `role` what it is
+/// ("student's image" or "reference image").
 pub fn image_named(
     mut reader: impl BufRead + Seek,
     max_pixels: u64,
     shown: &str,
     role: &str,
-) -> Result<Image, String> {
+) -> Result<Image, ImageFileError> {
     let mut start = [0u8; 16];
     let seen = read_up_to(&mut reader, &mut start).unwrap_or(0);
     let _ = reader.seek(SeekFrom::Start(0));
@@ -404,16 +438,16 @@ pub fn image_named(
             }
             _ => "",
         };
-        return Err(format!(
-            "error: {shown} (the {role}) is not a PPM or PNG image{hint}"
-        ));
+        return Err(ImageFileError::Text {
+            shown: shown.to_string(),
+            role: role.to_string(),
+            hint,
+        });
     }
-    read_image_from(reader, max_pixels).map_err(|error| {
-        let hint = match error {
-            ReadError::TooLarge { .. } => " (--max-pixels raises the limit)",
-            _ => "",
-        };
-        format!("error: {shown} (the {role}): {error}{hint}")
+    read_image_from(reader, max_pixels).map_err(|error| ImageFileError::Read {
+        shown: shown.to_string(),
+        role: role.to_string(),
+        error,
     })
 }
 

@@ -2,12 +2,12 @@
 //! then renamed over), so that a failure leaves no half file and a symbolic or hard link
 //! planted in the folder is replaced, not written through.
 
-use super::super::Failure;
-use super::super::io::{MAX_INPUT, open_regular, read_all};
-use super::{Grades, Images, Row, html};
-use legacy_rt::compare::{self, Reference};
-use legacy_rt::error::escaped;
-use legacy_rt::{Image, image_output};
+use super::{GradeError, Grades, Images, Row, html};
+use crate::compare::{self, Reference};
+use crate::error::escaped;
+use crate::files::{MAX_INPUT, read_file};
+use crate::image_output::file::Temporary;
+use crate::{Image, image_output};
 use std::collections::HashSet;
 use std::fs;
 use std::path::{Component, Path, PathBuf};
@@ -21,23 +21,22 @@ pub struct Folder {
     root: PathBuf,
     /// Images already copied by `--merge` (a reference is shared by many rows).
     copied: Mutex<HashSet<String>>,
+    /// Hears of each temporary file written.
+    temporary: fn(&Path, Temporary),
 }
 
 /// A failure to write under the report folder.
-fn cannot_write(path: &Path, error: impl std::fmt::Display) -> Failure {
-    Failure(
-        format!(
-            "error: cannot write {}: {error}",
-            escaped(&path.display().to_string())
-        ),
-        2,
-    )
+fn cannot_write(path: &Path, error: impl std::fmt::Display) -> GradeError {
+    GradeError::Failed(format!(
+        "cannot write {}: {error}",
+        escaped(&path.display().to_string())
+    ))
 }
 
-/// Writes `bytes` to `path` whole ([`image_output::file::replace`]).
-fn put(path: &Path, bytes: &[u8]) -> Result<(), Failure> {
-    image_output::file::replace(path, bytes, super::super::interrupt::partial_file)
-        .map_err(|error| cannot_write(path, error))
+/// Writes `bytes` to `path` whole ([`image_output::file::replace`]), `temporary` told of
+/// the temporary file it goes through.
+fn put(path: &Path, bytes: &[u8], temporary: fn(&Path, Temporary)) -> Result<(), GradeError> {
+    image_output::file::replace(path, bytes, temporary).map_err(|error| cannot_write(path, error))
 }
 
 /// `path` made absolute and resolved as far as it exists.
@@ -102,20 +101,18 @@ fn thumbnail(image: &Image) -> Result<Vec<u8>, String> {
 
 /// Fails unless `path` can be written as a file: the Gradescope file's path, checked
 /// before grading.
-pub fn check_file(path: &Path) -> Result<PathBuf, Failure> {
+pub fn check_file(path: &Path) -> Result<PathBuf, GradeError> {
     let shown = escaped(&path.display().to_string());
     if path.is_dir() {
-        return Err(Failure(
-            format!("error: {shown} is a folder, not a file"),
-            2,
-        ));
+        return Err(GradeError::Failed(format!(
+            "{shown} is a folder, not a file"
+        )));
     }
     let parent = path.parent().filter(|p| !p.as_os_str().is_empty());
     if parent.is_some_and(|p| !p.is_dir()) {
-        return Err(Failure(
-            format!("error: cannot write {shown}: its folder does not exist"),
-            2,
-        ));
+        return Err(GradeError::Failed(format!(
+            "cannot write {shown}: its folder does not exist"
+        )));
     }
     Ok(path.to_path_buf())
 }
@@ -124,9 +121,13 @@ impl Folder {
     /// Checks the report folder `root`: new, empty, or an earlier report
     /// (it holds grades.json), and neither inside nor around the folders read (`inputs`),
     /// whose files it would otherwise be graded with or write over.
-    pub fn check(root: &Path, inputs: &[&PathBuf]) -> Result<Folder, Failure> {
+    pub fn check(
+        root: &Path,
+        inputs: &[&PathBuf],
+        temporary: fn(&Path, Temporary),
+    ) -> Result<Folder, GradeError> {
         let shown = escaped(&root.display().to_string());
-        let refuse = |why: String| Failure(format!("error: -o {shown}: {why}"), 2);
+        let refuse = |why: String| GradeError::Failed(format!("-o {shown}: {why}"));
         let at = resolved(root);
         for input in inputs {
             let input_at = resolved(input);
@@ -157,12 +158,13 @@ impl Folder {
         Ok(Folder {
             root: root.to_path_buf(),
             copied: Mutex::new(HashSet::new()),
+            temporary,
         })
     }
 
     /// Creates the folder and its images/, once what is graded has been read: a run
     /// that fails before leaves nothing behind.
-    pub fn create(&self) -> Result<(), Failure> {
+    pub fn create(&self) -> Result<(), GradeError> {
         let images = self.root.join("images");
         fs::create_dir_all(&images).map_err(|error| cannot_write(&images, error))
     }
@@ -173,18 +175,18 @@ impl Folder {
     }
 
     /// Writes the small image of the reference of scene `name`.
-    pub fn reference_image(&self, name: &str, image: &Image) -> Result<(), Failure> {
+    pub fn reference_image(&self, name: &str, image: &Image) -> Result<(), GradeError> {
         let relative = Self::reference_path(name, image.width, image.height);
         self.put_image(&relative, image)
     }
 
-    fn put_image(&self, relative: &str, image: &Image) -> Result<(), Failure> {
+    fn put_image(&self, relative: &str, image: &Image) -> Result<(), GradeError> {
         let path = self.root.join(relative);
         if let Some(parent) = path.parent() {
             fs::create_dir_all(parent).map_err(|error| cannot_write(parent, error))?;
         }
         let png = thumbnail(image).map_err(|error| cannot_write(&path, error))?;
-        put(&path, &png)
+        put(&path, &png, self.temporary)
     }
 
     /// Writes a pair's small images, the student's and (with a reference) the diff, and
@@ -196,7 +198,7 @@ impl Folder {
         image: &Image,
         reference: Option<&Reference>,
         levels: u8,
-    ) -> Result<Images, Failure> {
+    ) -> Result<Images, GradeError> {
         let folder = format!("images/{}", component(student));
         let own = format!("{folder}/{}.png", component(scene));
         self.put_image(&own, image)?;
@@ -208,7 +210,7 @@ impl Folder {
         if let Some(reference) = reference {
             let diff = format!("{folder}/{}-diff.png", component(scene));
             let drawn = compare::diff_image(reference, image, levels)
-                .map_err(|error| Failure(format!("error: {error}"), 2))?;
+                .map_err(|error| GradeError::Failed(format!("{error}")))?;
             self.put_image(&diff, &drawn)?;
             images.diff = Some(diff);
             let (w, h) = (reference.image.width, reference.image.height);
@@ -218,20 +220,23 @@ impl Folder {
     }
 
     /// grades.csv, grades.json and index.html.
-    pub fn write_grades(&self, grades: &Grades) -> Result<(), Failure> {
+    pub fn write_grades(&self, grades: &Grades) -> Result<(), GradeError> {
         let csv_path = self.root.join("grades.csv");
-        put(
-            &csv_path,
-            &csv(grades).map_err(|e| cannot_write(&csv_path, e))?,
-        )?;
+        let table = csv(grades).map_err(|e| cannot_write(&csv_path, e))?;
+        put(&csv_path, &table, self.temporary)?;
         let json_path = self.root.join("grades.json");
         let json = serde_json::to_vec_pretty(grades).map_err(|e| cannot_write(&json_path, e))?;
-        put(&json_path, &json)?;
-        put(&self.root.join("index.html"), html::page(grades).as_bytes())
+        put(&json_path, &json, self.temporary)?;
+        let page = html::page(grades);
+        put(
+            &self.root.join("index.html"),
+            page.as_bytes(),
+            self.temporary,
+        )
     }
 
     /// A part's row with its images copied from the part's folder `part` into this one.
-    pub fn copy_images(&self, part: &Path, row: Row) -> Result<Row, Failure> {
+    pub fn copy_images(&self, part: &Path, row: Row) -> Result<Row, GradeError> {
         let Some(images) = &row.images else {
             return Ok(row);
         };
@@ -245,14 +250,11 @@ impl Folder {
                 .components()
                 .all(|c| matches!(c, Component::Normal(_)));
             if !inside || !relative.starts_with("images/") {
-                return Err(Failure(
-                    format!(
-                        "error: {} names an image outside its images/: {}",
-                        escaped(&part.join("grades.json").display().to_string()),
-                        escaped(relative)
-                    ),
-                    2,
-                ));
+                return Err(GradeError::Failed(format!(
+                    "{} names an image outside its images/: {}",
+                    escaped(&part.join("grades.json").display().to_string()),
+                    escaped(relative)
+                )));
             }
             if !self
                 .copied
@@ -263,12 +265,12 @@ impl Folder {
                 continue;
             }
             let from = within(part, relative)?;
-            let bytes = read_all(open_regular(&from)?, &from, MAX_INPUT)?;
+            let bytes = read_file(&from, MAX_INPUT)?;
             let to = self.root.join(relative);
             if let Some(parent) = to.parent() {
                 fs::create_dir_all(parent).map_err(|error| cannot_write(parent, error))?;
             }
-            put(&to, &bytes)?;
+            put(&to, &bytes, self.temporary)?;
         }
         Ok(row)
     }
@@ -327,41 +329,39 @@ fn csv(grades: &Grades) -> Result<Vec<u8>, csv::Error> {
 /// `relative` under the part's folder `part`, where no component below the part is a
 /// symbolic link: a part's files are read as themselves, never through a link out of
 /// the part (an `images` linked to /etc would copy its files into the report).
-fn within(part: &Path, relative: &str) -> Result<PathBuf, Failure> {
+fn within(part: &Path, relative: &str) -> Result<PathBuf, GradeError> {
     let mut path = part.to_path_buf();
     for component in Path::new(relative).components() {
         path.push(component);
         if fs::symlink_metadata(&path).is_ok_and(|m| m.file_type().is_symlink()) {
-            return Err(Failure(
-                format!(
-                    "error: {} is a symbolic link: a part's report is read only from its own \
+            return Err(GradeError::Failed(format!(
+                "{} is a symbolic link: a part's report is read only from its own \
                      files, never through a link",
-                    escaped(&path.display().to_string())
-                ),
-                2,
-            ));
+                escaped(&path.display().to_string())
+            )));
         }
     }
     Ok(path)
 }
 
 /// A part's grades.json.
-pub fn read_grades(part: &Path) -> Result<Grades, Failure> {
+pub fn read_grades(part: &Path) -> Result<Grades, GradeError> {
     let path = within(part, "grades.json")?;
-    let bytes = read_all(open_regular(&path)?, &path, MAX_INPUT)?;
+    let bytes = read_file(&path, MAX_INPUT)?;
     serde_json::from_slice(&bytes).map_err(|error| {
-        Failure(
-            format!(
-                "error: {} is not a report of legacy-rt grade: {error}",
-                escaped(&path.display().to_string())
-            ),
-            2,
-        )
+        GradeError::Failed(format!(
+            "{} is not a report of legacy-rt grade: {error}",
+            escaped(&path.display().to_string())
+        ))
     })
 }
 
 /// Gradescope's results.json for the one student of `grades`: a test per scene.
-pub fn gradescope(grades: &Grades, path: &Path) -> Result<(), Failure> {
+pub fn gradescope(
+    grades: &Grades,
+    path: &Path,
+    temporary: fn(&Path, Temporary),
+) -> Result<(), GradeError> {
     let tests: Vec<serde_json::Value> = grades
         .rows
         .iter()
@@ -387,5 +387,5 @@ pub fn gradescope(grades: &Grades, path: &Path) -> Result<(), Failure> {
         "tests": tests,
     });
     let bytes = serde_json::to_vec_pretty(&results).map_err(|error| cannot_write(path, error))?;
-    put(path, &bytes)
+    put(path, &bytes, temporary)
 }

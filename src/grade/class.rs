@@ -1,8 +1,8 @@
 //! The class on disk: the scene files, the students and the image each handed in for each
 //! scene, and what else lies there.
 
-use super::super::Failure;
-use legacy_rt::error::escaped;
+use super::GradeError;
+use crate::error::escaped;
 use std::fs;
 use std::path::{Path, PathBuf};
 
@@ -74,10 +74,10 @@ type Entry = (String, PathBuf, bool);
 
 /// The entries of a folder, sorted by name, hidden ones (`.name`) left out; each with
 /// whether it is a symbolic link (told without following it).
-fn entries(folder: &Path, what: &str) -> Result<Vec<Entry>, Failure> {
+fn entries(folder: &Path, what: &str) -> Result<Vec<Entry>, GradeError> {
     let shown = escaped(&folder.display().to_string());
     let cannot =
-        |error: std::io::Error| Failure(format!("error: cannot read {what} {shown}: {error}"), 2);
+        |error: std::io::Error| GradeError::Failed(format!("cannot read {what} {shown}: {error}"));
     let mut found = Vec::new();
     for entry in fs::read_dir(folder).map_err(cannot)? {
         let entry = entry.map_err(cannot)?;
@@ -99,7 +99,7 @@ fn split(name: &str) -> Option<(&str, String)> {
 }
 
 /// Finds the class: the scene files of `scenes` and the students of `submissions`.
-pub fn find(scenes: &Path, submissions: &Path) -> Result<Class, Failure> {
+pub fn find(scenes: &Path, submissions: &Path) -> Result<Class, GradeError> {
     let mut scene_files = Vec::new();
     for (name, path, _) in entries(scenes, "the scenes' folder")? {
         if let Some((stem, extension)) = split(&name)
@@ -113,13 +113,10 @@ pub fn find(scenes: &Path, submissions: &Path) -> Result<Class, Failure> {
         }
     }
     if scene_files.is_empty() {
-        return Err(Failure(
-            format!(
-                "error: {} holds no scene file (NAME.txt)",
-                escaped(&scenes.display().to_string())
-            ),
-            2,
-        ));
+        return Err(GradeError::Failed(format!(
+            "{} holds no scene file (NAME.txt)",
+            escaped(&scenes.display().to_string())
+        )));
     }
     let is_image_of_a_scene = |name: &str| {
         split(name).is_some_and(|(stem, extension)| {
@@ -159,13 +156,10 @@ pub fn find(scenes: &Path, submissions: &Path) -> Result<Class, Failure> {
         }
     }
     if students.is_empty() {
-        return Err(Failure(
-            format!(
-                "error: {} holds no student's folder and no image named after a scene",
-                escaped(&submissions.display().to_string())
-            ),
-            2,
-        ));
+        return Err(GradeError::Failed(format!(
+            "{} holds no student's folder and no image named after a scene",
+            escaped(&submissions.display().to_string())
+        )));
     }
     Ok(Class {
         scenes: scene_files,

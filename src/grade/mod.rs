@@ -1,129 +1,116 @@
-//! `legacy-rt grade SCENES SUBMISSIONS -o REPORT`: every student's image of every scene,
-//! graded as `compare --diagnose` grades one pair, each reference rendered once and
-//! shared, the pairs on all cores; the grades as CSV and JSON, a page to look over, and
-//! Gradescope's `results.json`.
+//! Grading a class: every student's image of every scene, graded as `compare --diagnose`
+//! grades one pair, each reference rendered once and shared, the pairs on all cores; the
+//! grades as CSV and JSON, a page to look over, and Gradescope's `results.json`. The
+//! command line's `legacy-rt grade` is a thin layer over [`grade`] and [`merge`].
 //!
-//! [`class`] finds the scenes, the students and their files; [`write`] writes the
-//! report's files; [`html`] is its page; [`scheme`] reads `--scheme`.
+//! `class` finds the scenes, the students and their files; `write` writes the
+//! report's files; `html` is its page; `scheme` reads `--scheme`.
 
 mod class;
 mod html;
 mod scheme;
 mod write;
 
-use super::compare::{Closeness, add_trace_commands, max_pixels, read_image};
-use super::{Failure, HowArgs, pixels, threads, usage};
+use crate::compare::{self, Reference, Settings, Tolerance, Verdict};
+use crate::error::escaped;
+use crate::files::{self, FileError, MAX_INPUT};
+use crate::image_output::file::Temporary;
+use crate::render::Choices;
+use crate::{Options, Scene};
 use class::{Class, Pair, Submitted};
-use legacy_rt::compare::read::DEFAULT_MAX_PIXELS;
-use legacy_rt::compare::{self, Reference, Settings, Verdict};
-use legacy_rt::error::escaped;
-use legacy_rt::{Options, Scene};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
-use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex, OnceLock};
+use thiserror::Error;
 
-/// Examples for `grade --help`.
-pub const EXAMPLES: &str = "\
-Examples:
-  legacy-rt grade scenes/ submissions/ -o report/         every student, every scene
-  legacy-rt grade --size 640 480 scenes/ submissions/ -o report/   other sizes: wrong-size
-  legacy-rt grade --scheme points.toml scenes/ submissions/ -o report/
-  legacy-rt grade --gradescope /autograder/results/results.json \\
-      scenes/ /autograder/submission/ -o report/                  one student, Gradescope
-  legacy-rt grade --shard 2/4 scenes/ submissions/ -o part2/      a quarter of the pairs
-  legacy-rt grade --merge part1/ part2/ part3/ part4/ -o report/  the parts joined
-
-SCENES holds the scene files, NAME.txt. SUBMISSIONS holds a folder per student, each with
-NAME.ppm or NAME.png for every scene NAME; image files directly in SUBMISSIONS are one
-student's (as an autograder runs it). Each (student, scene) pair is graded as
-`legacy-rt compare --diagnose SCENES/NAME.txt STUDENT/NAME.ppm` grades it, with the same
-options; its verdict is match, differ, wrong-size (with --size or a scheme's size),
-missing or unreadable. Each reference (scene, size, options) is rendered once.
-
-REPORT/ gets grades.csv (student, scene, verdict, differing_pixels, diagnosis, points,
-max_points, width, height, file, message, warning), grades.json (the same and each pair's compare
-report), index.html (a page that works offline: the class's table and, per pair, the
-reference, the student's image and the diff with the diagnosis) and images/. REPORT must
-be a new or empty folder, or an earlier report (its files are replaced).
-
-Points (--scheme FILE, TOML; docs/grade.md):
-  [scenes.spec1]
-  points = 2            # default 1, all or nothing on the verdict
-  size = [640, 480]     # optional: another size is wrong-size
-  tolerance = 1         # optional: --tolerance for this scene
-
-Exit status: 0 when the class was graded, whatever the verdicts; 2 when SCENES or
-SUBMISSIONS cannot be read, a scene does not load (the message names it), or an option is
-wrong.";
-
-/// `grade`'s arguments.
-#[derive(clap::Args, Debug)]
-pub struct GradeArgs {
-    /// SCENES (a folder of NAME.txt) and SUBMISSIONS (a folder per student, or one
-    /// student's images); with --merge, the REPORT folders of the parts
-    #[arg(value_name = "SCENES SUBMISSIONS", required = true)]
-    paths: Vec<PathBuf>,
-
-    /// The folder to write the report to: grades.csv, grades.json, index.html, images/
-    #[arg(short, long, value_name = "REPORT")]
-    output: PathBuf,
-
-    /// How close each student's image must be.
-    #[command(flatten)]
-    close: Closeness,
-
-    /// The size every student's image must have: another size is verdict wrong-size
-    /// (without it, each reference is rendered at the student image's size)
-    #[arg(long, value_names = ["W", "H"], num_args = 2, value_parser = pixels)]
-    size: Option<Vec<u64>>,
-
-    /// Points, sizes and tolerances per scene (TOML; see below and docs/grade.md)
-    #[arg(long, value_name = "FILE")]
-    scheme: Option<PathBuf>,
-
-    /// Also write Gradescope's results.json to FILE (one student's SUBMISSIONS)
-    #[arg(long, value_name = "FILE")]
-    gradescope: Option<PathBuf>,
-
-    /// Grade only the K-th of N parts of the pairs (K from 1), the same parts on every
-    /// machine; `grade --merge` joins the parts' reports
-    #[arg(long, value_name = "K/N", value_parser = shard)]
-    shard: Option<(usize, usize)>,
-
-    /// Join the reports of the parts (their REPORT folders, given instead of SCENES and
-    /// SUBMISSIONS) into one
-    #[arg(long)]
-    merge: bool,
-
-    /// Grade N pairs at a time, at most 256; 0 (the default) means one per core
-    #[arg(long, value_name = "N", default_value_t = 0, value_parser = threads)]
-    threads: usize,
-
-    /// How many of the most different pixels each pair's report lists
-    #[arg(long, value_name = "N", default_value_t = 10)]
-    worst: usize,
-
-    /// The most pixels a student's image may have [default: 16777216, 4096x4096]
-    #[arg(long, value_name = "N", default_value_t = DEFAULT_MAX_PIXELS, value_parser = max_pixels, hide_default_value = true)]
-    max_pixels: u64,
-
-    /// How the references are computed.
-    #[command(flatten)]
-    how: HowArgs,
+/// Why a class cannot be graded (or parts merged). None of the messages starts with
+/// `error: `, which the command line adds.
+#[derive(Debug, Error)]
+pub enum GradeError {
+    /// The folders or options given do not go together: the command line points at
+    /// `--help`.
+    #[error("{0}")]
+    Usage(String),
+    /// A file or folder the user named cannot be read.
+    #[error(transparent)]
+    File(#[from] FileError),
+    /// A scene does not load: its file and the error of spec §2.4.
+    #[error("{file}: {error}")]
+    Scene {
+        /// The scene file, escaped.
+        file: String,
+        /// Why it does not load (boxed: it holds the line).
+        error: Box<crate::SceneError>,
+    },
+    /// Anything else that stops the grading: the report folder, a scheme, a part.
+    #[error("{0}")]
+    Failed(String),
 }
 
-/// Parses `--shard K/N`.
-fn shard(text: &str) -> Result<(usize, usize), String> {
-    let parsed = text
-        .split_once('/')
-        .and_then(|(k, n)| Some((k.trim().parse().ok()?, n.trim().parse().ok()?)));
-    match parsed {
-        Some((k, n)) if 1 <= k && k <= n => Ok((k, n)),
-        _ => Err("expected K/N with 1 <= K <= N, such as 2/4".to_string()),
+/// How close each student's image must be: `--tolerance`, `--allow` (a percentage) and
+/// `--precision`, each `None` where not given.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Closeness {
+    /// The largest per-channel difference that counts as equal, in byte levels.
+    pub levels: Option<u8>,
+    /// The share of pixels, in percent, that may differ on pixels the reference is sure of.
+    pub allow: Option<f64>,
+    /// The arithmetic a correct tracer is granted, as a relative precision.
+    pub precision: Option<f64>,
+}
+
+impl Closeness {
+    /// The tolerance, with a scene's `levels` (a scheme's) before the given ones.
+    pub fn tolerance(&self, levels: Option<u8>) -> Tolerance {
+        let default = Tolerance::default();
+        Tolerance {
+            levels: levels.or(self.levels).unwrap_or(default.levels),
+            allow: self.allow.unwrap_or(default.allow * 100.0) / 100.0,
+            precision: self.precision.unwrap_or(default.precision),
+        }
     }
+}
+
+/// What every pair is graded with: `grade`'s options.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Plan {
+    /// How close each image must be.
+    pub closeness: Closeness,
+    /// The size every image must have (another is wrong-size); `None` renders each
+    /// reference at its student image's size.
+    pub size: Option<[u64; 2]>,
+    /// How the references are computed.
+    pub choices: Choices,
+    /// Pairs graded at a time; 0 for one per core.
+    pub threads: usize,
+    /// How many of the most different pixels each pair's report lists.
+    pub worst: usize,
+    /// The most pixels a student's image may have.
+    pub max_pixels: u64,
+    /// Only the K-th of N parts of the pairs (K from 1).
+    pub shard: Option<(usize, usize)>,
+}
+
+/// What grading tells its caller as it goes.
+pub struct Hooks<'a> {
+    /// Hears of each temporary file the report is written through (the command line
+    /// removes them on an interrupt).
+    pub temporary: fn(&Path, Temporary),
+    /// Hears how many pairs there are, then of each one graded.
+    pub progress: &'a (dyn Fn(Progress) + Sync),
+}
+
+/// How far the grading is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Progress {
+    /// This many pairs are to be graded.
+    Pairs(usize),
+    /// One more pair is graded.
+    Graded,
+    /// Every pair is graded.
+    Done,
 }
 
 /// One graded pair: a row of grades.csv, and of grades.json with the compare report.
@@ -247,97 +234,96 @@ impl Grades {
     }
 }
 
-/// Grades the class, or joins parts with `--merge`.
-pub fn run(args: &GradeArgs) -> Result<(), Failure> {
-    args.how.check()?;
-    // An interrupt removes the report's files being written (`.NAME.PID-N.partial`).
-    super::interrupt::remove_partial_file_on_interrupt();
-    if args.merge {
-        return merge(args);
-    }
-    let [scenes, submissions] = args.paths.as_slice() else {
-        return Err(usage(format!(
-            "grade takes two folders, SCENES and SUBMISSIONS (or, with --merge, the parts' \
-             reports); {} given",
-            args.paths.len()
-        )));
-    };
-    let report = write::Folder::check(&args.output, &[scenes, submissions])?;
-    let scheme = match &args.scheme {
+/// Grades every student of SUBMISSIONS on every scene of SCENES into the report folder
+/// `report` (grades.csv, grades.json, index.html, images/), with the points of `scheme`
+/// (a TOML file) and, for one student, Gradescope's results.json at `gradescope`.
+pub fn grade(
+    [scenes, submissions]: [&Path; 2],
+    report_folder: &Path,
+    scheme: Option<&Path>,
+    gradescope: Option<&Path>,
+    plan: &Plan,
+    hooks: &Hooks,
+) -> Result<Grades, GradeError> {
+    let scenes_path = scenes.to_path_buf();
+    let submissions_path = submissions.to_path_buf();
+    let report = write::Folder::check(
+        report_folder,
+        &[&scenes_path, &submissions_path],
+        hooks.temporary,
+    )?;
+    let scheme = match scheme {
         Some(path) => scheme::read(path)?,
         None => scheme::Scheme::default(),
     };
     let class = class::find(scenes, submissions)?;
     scheme.check(&class.scenes)?;
-    if args.gradescope.is_some() && class.students.len() != 1 {
-        return Err(usage(format!(
+    if gradescope.is_some() && class.students.len() != 1 {
+        return Err(GradeError::Usage(format!(
             "--gradescope writes one student's results, and {} holds {} students' folders",
             escaped(&submissions.display().to_string()),
             class.students.len()
         )));
     }
-    let gradescope = args
-        .gradescope
-        .as_deref()
-        .map(write::check_file)
-        .transpose()?;
+    let gradescope = gradescope.map(write::check_file).transpose()?;
     let loaded = load_scenes(&class)?;
     report.create()?;
     let mut pairs = class.pairs();
-    if let Some((k, n)) = args.shard {
+    if let Some((k, n)) = plan.shard {
         pairs = pairs.into_iter().skip(k - 1).step_by(n).collect();
     }
     let grader = Grader {
-        args,
+        plan,
         class: &class,
         scheme: &scheme,
         scenes: &loaded,
         references: Mutex::new(HashMap::new()),
         folder: &report,
     };
-    let rows = grader.grade_all(&pairs)?;
+    let rows = grader.grade_all(&pairs, hooks.progress)?;
     let grades = Grades {
         scenes: class.scenes.iter().map(|s| s.name.clone()).collect(),
         students: class.students.iter().map(|s| s.name.clone()).collect(),
-        options: options_text(args),
-        shard: args.shard.map(|(k, n)| format!("{k}/{n}")),
+        options: options_text(plan),
+        shard: plan.shard.map(|(k, n)| format!("{k}/{n}")),
         unexpected: class.unexpected.clone(),
         rows,
     };
     report.write_grades(&grades)?;
     if let Some(file) = gradescope {
-        write::gradescope(&grades, &file)?;
+        write::gradescope(&grades, &file, hooks.temporary)?;
     }
-    summary(&grades, &args.output);
-    Ok(())
+    Ok(grades)
 }
 
 /// The flags that every pair's `compare` takes, as grades.json records them.
-fn options_text(args: &GradeArgs) -> String {
-    let mut flags = format!("--diagnose --tolerance {}", args.close.tolerance);
-    if let Some(allow) = args.close.allow {
+fn options_text(plan: &Plan) -> String {
+    let close = &plan.closeness;
+    let levels = close.levels.unwrap_or(Tolerance::default().levels);
+    let mut flags = format!("--diagnose --tolerance {levels}");
+    if let Some(allow) = close.allow {
         flags += &format!(" --allow {allow}");
     }
-    if let Some(precision) = args.close.precision {
+    if let Some(precision) = close.precision {
         flags += &format!(" --precision {precision:e}");
     }
-    if let Some(&[w, h]) = args.size.as_deref() {
+    if let Some([w, h]) = plan.size {
         flags += &format!(" --size {w} {h}");
     }
-    flags + &args.how.choices().flags()
+    flags + &plan.choices.flags()
 }
 
-/// The scenes, loaded; exit 2 naming the first that does not load.
-fn load_scenes(class: &Class) -> Result<Vec<Scene>, Failure> {
+/// The scenes, loaded; an error naming the first that does not load.
+fn load_scenes(class: &Class) -> Result<Vec<Scene>, GradeError> {
     class
         .scenes
         .iter()
         .map(|scene| {
-            let shown = escaped(&scene.path.display().to_string());
-            let file = super::io::open_regular(&scene.path)?;
-            let bytes = super::io::read_all(file, &scene.path, super::io::MAX_INPUT)?;
-            legacy_rt::load(&super::io::text_of(bytes))
-                .map_err(|error| Failure(format!("{shown}: {error}"), 2))
+            let bytes = files::read_file(&scene.path, MAX_INPUT)?;
+            crate::load(&files::text_of(bytes)).map_err(|error| GradeError::Scene {
+                file: files::shown(&scene.path),
+                error: Box::new(error),
+            })
         })
         .collect()
 }
@@ -347,7 +333,7 @@ type Shared = Arc<OnceLock<Result<(Reference, Options), String>>>;
 
 /// What grading shares between the pairs.
 struct Grader<'a> {
-    args: &'a GradeArgs,
+    plan: &'a Plan,
     class: &'a Class,
     scheme: &'a scheme::Scheme,
     scenes: &'a [Scene],
@@ -356,47 +342,40 @@ struct Grader<'a> {
 }
 
 impl Grader<'_> {
-    /// Every pair, on `--threads` threads, with a progress bar on a terminal; the rows in
-    /// the pairs' order.
-    fn grade_all(&self, pairs: &[Pair]) -> Result<Vec<Row>, Failure> {
+    /// Every pair, on the plan's threads, `progress` told of each; the rows in the pairs'
+    /// order.
+    fn grade_all(
+        &self,
+        pairs: &[Pair],
+        progress: &(dyn Fn(Progress) + Sync),
+    ) -> Result<Vec<Row>, GradeError> {
         let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(self.args.threads)
+            .num_threads(self.plan.threads)
             .build()
-            .map_err(|error| Failure(format!("error: cannot start the threads: {error}"), 2))?;
-        let bar = std::io::stderr().is_terminal().then(|| {
-            let bar = indicatif::ProgressBar::new(pairs.len() as u64);
-            bar.set_style(
-                indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} pairs, {eta} left")
-                    .expect("the template is valid"),
-            );
-            bar
-        });
+            .map_err(|error| GradeError::Failed(format!("cannot start the threads: {error}")))?;
+        progress(Progress::Pairs(pairs.len()));
         let rows = pool.install(|| {
             pairs
                 .par_iter()
                 .map(|pair| {
                     let row = self.grade(pair);
-                    if let Some(bar) = &bar {
-                        bar.inc(1);
-                    }
+                    progress(Progress::Graded);
                     row
                 })
-                .collect::<Result<Vec<Row>, Failure>>()
+                .collect::<Result<Vec<Row>, GradeError>>()
         });
-        if let Some(bar) = bar {
-            bar.finish_and_clear();
-        }
+        progress(Progress::Done);
         rows
     }
 
     /// One pair's row; its images written under REPORT/images/.
-    fn grade(&self, pair: &Pair) -> Result<Row, Failure> {
+    fn grade(&self, pair: &Pair) -> Result<Row, GradeError> {
         let student = &self.class.students[pair.student];
         let scene = &self.class.scenes[pair.scene];
         let plan = self.scheme.scene(&scene.name);
         let settings = Settings {
-            tolerance: self.args.close.tolerance(plan.tolerance),
-            worst: self.args.worst,
+            tolerance: self.plan.closeness.tolerance(plan.tolerance),
+            worst: self.plan.worst,
             diagnose: true,
         };
         let mut row = Row {
@@ -453,21 +432,19 @@ impl Grader<'_> {
             }
         };
         row.file = Some(path.display().to_string());
-        let image = match read_image(path, "student's image", self.args.max_pixels) {
+        let image = match files::read_image(path, "student's image", self.plan.max_pixels) {
             Ok(image) => image,
-            Err(Failure(message, _)) => {
+            Err(error) => {
                 row.verdict = "unreadable".into();
-                row.message = Some(message.trim_start_matches("error: ").to_string());
+                row.message = Some(error.to_string());
                 return Ok(row);
             }
         };
         (row.width, row.height) = (Some(image.width), Some(image.height));
-        let required = plan
-            .size
-            .or(self.args.size.as_deref().map(|s| [s[0], s[1]]));
+        let required = plan.size.or(self.plan.size);
         let scene_shown = scene.path.display().to_string();
         let student_shown = escaped(&path.display().to_string());
-        let choices = self.args.how.choices();
+        let choices = &self.plan.choices;
         let shared;
         let (report, reference) = match required {
             Some([w, h]) if (image.width as u64, image.height as u64) != (w, h) => {
@@ -478,13 +455,15 @@ impl Grader<'_> {
                 shared = self.reference(pair.scene, image.width, image.height);
                 let rendered = shared.get().expect("rendered by `reference`");
                 let (reference, options) = rendered.as_ref().map_err(|message| {
-                    Failure(format!("error: {}: {message}", escaped(&scene_shown)), 2)
+                    GradeError::Failed(format!("{}: {message}", escaped(&scene_shown)))
                 })?;
                 let scene_data = &self.scenes[pair.scene];
                 let mut report =
                     compare::report(reference, &image, Some((scene_data, options)), &settings)
-                        .map_err(|error| Failure(format!("error: {error}"), 2))?;
-                add_trace_commands(&mut report, &choices, options, &scene_shown);
+                        .map_err(|error| GradeError::Failed(error.to_string()))?;
+                report.add_trace_commands(|x, y| {
+                    compare::text::trace_command(choices, options, &scene_shown, x, y)
+                });
                 (report, Some(reference))
             }
         };
@@ -498,7 +477,7 @@ impl Grader<'_> {
         let causes = report.causes.iter().flatten();
         row.diagnosis = causes.map(|c| c.id.as_str()).collect::<Vec<_>>().join(",");
         row.explanation = compare::text::diagnosis(&report);
-        let text_choices = Some(&choices).filter(|_| reference.is_some());
+        let text_choices = Some(choices).filter(|_| reference.is_some());
         let shown = escaped(&scene_shown);
         row.text = Some(compare::text::text(
             &report,
@@ -515,7 +494,7 @@ impl Grader<'_> {
         )?);
         row.compare = Some(
             serde_json::value::to_raw_value(&report)
-                .map_err(|error| Failure(format!("error: {error}"), 2))?,
+                .map_err(|error| GradeError::Failed(format!("{error}")))?,
         );
         Ok(row)
     }
@@ -529,23 +508,19 @@ impl Grader<'_> {
         };
         cell.get_or_init(|| {
             let scene = &self.scenes[index];
-            let options = self
-                .args
-                .how
-                .options(scene, width as u64, height as u64)
-                .map_err(|Failure(message, _)| message)?;
+            let options = self.plan.choices.options(scene, width, height)?;
             // One thread: the pool's other threads grade other pairs meanwhile.
             let options = Options {
                 threads: 1,
                 ..options
             };
-            let precision = self.args.close.tolerance(None).precision;
+            let precision = self.plan.closeness.tolerance(None).precision;
             let reference = compare::reference_at(scene, &options, precision, true);
             if let Err(error) = self
                 .folder
                 .reference_image(&self.class.scenes[index].name, &reference.image)
             {
-                return Err(error.0);
+                return Err(error.to_string());
             }
             Ok((reference, options))
         });
@@ -553,39 +528,18 @@ impl Grader<'_> {
     }
 }
 
-/// The verdicts' counts on standard error, and where the report is.
-fn summary(grades: &Grades, folder: &Path) {
-    // A part's verdicts are its file's words: escaped, so that a crafted one cannot act on
-    // the terminal.
-    let counts: Vec<String> = (grades.verdicts().iter())
-        .map(|(v, n)| format!("{n} {}", escaped(v)))
-        .collect();
-    super::say(&format!(
-        "graded {} pairs ({} students x {} scenes{}): {}; report in {}",
-        grades.rows.len(),
-        grades.students.len(),
-        grades.scenes.len(),
-        grades
-            .shard
-            .as_ref()
-            .map(|s| format!(", part {s}"))
-            .unwrap_or_default(),
-        counts.join(", "),
-        escaped(&folder.join("index.html").display().to_string())
-    ));
-}
-
-/// `grade --merge PART... -o REPORT`: the parts' grades.json joined, their images copied.
-fn merge(args: &GradeArgs) -> Result<(), Failure> {
-    let parts: Vec<&PathBuf> = args.paths.iter().collect();
-    let report = write::Folder::check(&args.output, &parts)?;
-    let read: Vec<Grades> = (args.paths.iter())
+/// `grade --merge PART... -o REPORT`: the parts' grades.json joined into the report
+/// folder `report_folder`, their images copied.
+pub fn merge(paths: &[PathBuf], report_folder: &Path, hooks: &Hooks) -> Result<Grades, GradeError> {
+    let parts: Vec<&PathBuf> = paths.iter().collect();
+    let report = write::Folder::check(report_folder, &parts, hooks.temporary)?;
+    let read: Vec<Grades> = (paths.iter())
         .map(|part| write::read_grades(part))
         .collect::<Result<_, _>>()?;
     report.create()?;
     let mut merged: Option<Grades> = None;
     let mut seen = HashMap::new();
-    for (part, grades) in args.paths.iter().zip(read) {
+    for (part, grades) in paths.iter().zip(read) {
         let shown = escaped(&part.display().to_string());
         let whole = merged.get_or_insert_with(|| Grades {
             rows: Vec::new(),
@@ -596,26 +550,20 @@ fn merge(args: &GradeArgs) -> Result<(), Failure> {
         if (&whole.scenes, &whole.students, &whole.options)
             != (&grades.scenes, &grades.students, &grades.options)
         {
-            return Err(Failure(
-                format!(
-                    "error: {shown} is a report of another class, scenes or options than the \
+            return Err(GradeError::Failed(format!(
+                "{shown} is a report of another class, scenes or options than the \
                      first part's: merge the parts of one grading"
-                ),
-                2,
-            ));
+            )));
         }
         for row in grades.rows {
             let key = (row.student.clone(), row.scene.clone());
             if let Some(first) = seen.insert(key, part.clone()) {
-                return Err(Failure(
-                    format!(
-                        "error: {} and {shown} both grade {}'s {}: give each part once",
-                        escaped(&first.display().to_string()),
-                        escaped(&row.student),
-                        escaped(&row.scene)
-                    ),
-                    2,
-                ));
+                return Err(GradeError::Failed(format!(
+                    "{} and {shown} both grade {}'s {}: give each part once",
+                    escaped(&first.display().to_string()),
+                    escaped(&row.student),
+                    escaped(&row.scene)
+                )));
             }
             let row = report.copy_images(part, row)?;
             whole.rows.push(row);
@@ -626,7 +574,11 @@ fn merge(args: &GradeArgs) -> Result<(), Failure> {
             }
         }
     }
-    let mut grades = merged.expect("clap requires one path at least");
+    let Some(mut grades) = merged else {
+        return Err(GradeError::Usage(
+            "--merge takes the parts' report folders".into(),
+        ));
+    };
     let places = |names: &[String]| -> HashMap<String, usize> {
         names
             .iter()
@@ -645,6 +597,5 @@ fn merge(args: &GradeArgs) -> Result<(), Failure> {
     grades.rows = rows;
     grades.unexpected.sort();
     report.write_grades(&grades)?;
-    summary(&grades, &args.output);
-    Ok(())
+    Ok(grades)
 }

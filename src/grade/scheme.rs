@@ -9,9 +9,9 @@
 //! tolerance = 1
 //! ```
 
-use super::super::Failure;
+use super::GradeError;
 use super::class::SceneFile;
-use legacy_rt::error::escaped;
+use crate::error::escaped;
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -66,7 +66,7 @@ impl Scheme {
 
     /// Fails on a scene the scheme names that SCENES does not hold (a typo would give
     /// its scene the default silently), on negative points and on an empty size.
-    pub fn check(&self, scenes: &[SceneFile]) -> Result<(), Failure> {
+    pub fn check(&self, scenes: &[SceneFile]) -> Result<(), GradeError> {
         // The file and the line of the first line that holds each of `needles`.
         let bad = |needles: &[&str], message: String| {
             let (file, line) = match &self.source {
@@ -79,7 +79,7 @@ impl Scheme {
                 }
                 None => (String::new(), String::new()),
             };
-            Failure(format!("error: --scheme{file}{line}: {message}"), 2)
+            GradeError::Failed(format!("--scheme{file}{line}: {message}"))
         };
         for (name, entry) in &self.scenes {
             let key = format!("scenes.{name}");
@@ -117,12 +117,11 @@ impl Scheme {
 }
 
 /// Reads the scheme file at `path`.
-pub fn read(path: &Path) -> Result<Scheme, Failure> {
+pub fn read(path: &Path) -> Result<Scheme, GradeError> {
     let shown = escaped(&path.display().to_string());
-    let file = super::super::io::open_regular(path)?;
-    let bytes = super::super::io::read_all(file, path, MAX_SCHEME)?;
+    let bytes = crate::files::read_file(path, MAX_SCHEME)?;
     let text = String::from_utf8(bytes)
-        .map_err(|_| Failure(format!("error: --scheme {shown} is not UTF-8 text"), 2))?;
+        .map_err(|_| GradeError::Failed(format!("--scheme {shown} is not UTF-8 text")))?;
     let scheme: Result<Scheme, _> = toml::from_str(&text);
     let mut scheme = scheme.map_err(|error| {
         let at = error
@@ -130,10 +129,7 @@ pub fn read(path: &Path) -> Result<Scheme, Failure> {
             .and_then(|span| text.get(..span.start))
             .map(|before| format!(" (line {})", before.matches('\n').count() + 1))
             .unwrap_or_default();
-        Failure(
-            format!("error: --scheme {shown}{at}: {}", error.message()),
-            2,
-        )
+        GradeError::Failed(format!("--scheme {shown}{at}: {}", error.message()))
     })?;
     scheme.source = Some((shown, text));
     Ok(scheme)
