@@ -5,9 +5,9 @@
 
 use super::io::emit_to_stdout;
 use super::render::write_image;
-use super::{Failure, HowArgs, output_file, pixels, size, threads};
+use super::{Closeness, Failure, HowArgs, max_pixels, output_file, pixels, size, threads};
 use legacy_rt::compare::read::{Content, DEFAULT_MAX_PIXELS, content};
-use legacy_rt::compare::{self, Settings, Tolerance, Verdict};
+use legacy_rt::compare::{self, Settings, Verdict};
 use legacy_rt::error::escaped;
 use legacy_rt::files::{MAX_INPUT, open_regular, read_all, read_image, same_file, text_of};
 use std::fs::File;
@@ -96,74 +96,6 @@ pub struct CompareArgs {
     /// How the reference is computed (with a scene).
     #[command(flatten)]
     how: HowArgs,
-}
-
-/// How close a student's image must be: what `compare` and `grade` share
-/// ([`legacy_rt::grade::Closeness`] as flags).
-#[derive(clap::Args, Debug)]
-pub struct Closeness {
-    /// The largest per-channel difference, in byte levels (0-255), that counts as equal
-    #[arg(long, value_name = "N", default_value_t = Tolerance::default().levels)]
-    pub tolerance: u8,
-
-    /// The share of pixels, in percent, that may differ beyond the tolerance on pixels
-    /// the reference is sure of while the images still match [default: 0]
-    #[arg(long, value_name = "PCT", value_parser = percent)]
-    pub allow: Option<f64>,
-
-    /// The arithmetic a correct tracer is granted: f32 (the default, single precision),
-    /// f64, or a relative precision such as 1e-6. Pixels whose decisions came closer than
-    /// this to going the other way are fragile, and a difference there is excused
-    #[arg(long, value_name = "f32|f64|NUMBER", value_parser = precision)]
-    pub precision: Option<f64>,
-}
-
-impl Closeness {
-    /// The flags as the library takes them.
-    pub fn closeness(&self) -> legacy_rt::grade::Closeness {
-        legacy_rt::grade::Closeness {
-            levels: Some(self.tolerance),
-            allow: self.allow,
-            precision: self.precision,
-        }
-    }
-
-    /// The tolerance, with `levels` instead of `--tolerance` if given.
-    pub fn tolerance(&self, levels: Option<u8>) -> Tolerance {
-        self.closeness().tolerance(levels)
-    }
-}
-
-/// Parses `--allow`, a percentage.
-fn percent(text: &str) -> Result<f64, String> {
-    match text.trim_end_matches('%').parse::<f64>() {
-        Ok(p) if (0.0..=100.0).contains(&p) => Ok(p),
-        _ => Err("expected a percentage from 0 to 100, such as 0.5".to_string()),
-    }
-}
-
-/// Parses `--precision`: f32, f64 or a relative precision from 0 to 0.01 (the reach of
-/// the margins' recording).
-fn precision(text: &str) -> Result<f64, String> {
-    match text {
-        "f32" => Ok(compare::F32),
-        "f64" => Ok(compare::F64),
-        _ => match text.parse::<f64>() {
-            Ok(p) if (0.0..=legacy_rt::render::MAX_PRECISION).contains(&p) => Ok(p),
-            _ => Err(
-                "expected f32, f64 or a relative precision from 0 to 0.01, such as 1e-6"
-                    .to_string(),
-            ),
-        },
-    }
-}
-
-/// Parses `--max-pixels`, a positive count.
-pub(super) fn max_pixels(text: &str) -> Result<u64, String> {
-    match text.replace('_', "").parse::<u64>() {
-        Ok(n) if n > 0 => Ok(n),
-        _ => Err("expected a whole number of pixels, such as 16777216 (4096x4096)".to_string()),
-    }
 }
 
 /// The first bytes of a file, enough to tell an image from a scene.

@@ -3,8 +3,7 @@
 //! `compare --diagnose` grades one pair; here are its flags, its progress bar, its
 //! clean-up on an interrupt and its summary line.
 
-use super::compare::{Closeness, max_pixels};
-use super::{Failure, HowArgs, pixels, threads};
+use super::{Closeness, Failure, HowArgs, max_pixels, pixels, threads};
 use legacy_rt::compare::read::DEFAULT_MAX_PIXELS;
 use legacy_rt::error::escaped;
 use legacy_rt::grade::{self, Grades, Hooks, Plan, Progress};

@@ -13,8 +13,7 @@ pub fn run(args: &RenderArgs) -> Result<(), Failure> {
     let writing_to_terminal = args.output.is_none() && std::io::stdout().is_terminal();
     if writing_to_terminal && !args.dump {
         return Err(Failure::usage(
-            "standard output is a terminal; redirect it to a file (> image.ppm) or use -o FILE"
-                .into(),
+            "standard output is a terminal; redirect it to a file (> image.ppm) or use -o FILE",
         ));
     }
     let output = output_file(args.output.as_deref().filter(|_| !args.dump))?;

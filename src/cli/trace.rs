@@ -94,8 +94,7 @@ pub fn run(args: &TraceArgs) -> Result<(), Failure> {
         _ => {
             return Err(Failure::usage(
                 "trace takes X Y [W H] (a pixel), or with --against FILE, [W H] (every pixel \
-                 of the file) or X Y W H"
-                    .into(),
+                 of the file) or X Y W H",
             ));
         }
     };
@@ -105,9 +104,7 @@ pub fn run(args: &TraceArgs) -> Result<(), Failure> {
     }
     let output = output_file(args.output.as_deref())?;
     if pixel.is_none() && output.is_some() {
-        return Err(Failure::usage(
-            "-o marks one pixel: give X Y W H with it".into(),
-        ));
+        return Err(Failure::usage("-o marks one pixel: give X Y W H with it"));
     }
     args.how.check()?;
     // The student's file is opened before the scene is read: an unreadable FILE fails at

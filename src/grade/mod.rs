@@ -267,6 +267,13 @@ pub fn grade(
     }
     let gradescope = gradescope.map(write::check_file).transpose()?;
     let loaded = load_scenes(&class)?;
+    // The choices apply to every scene (a variant scoped to a line each has a record on)
+    // before the report folder is made: a refusal leaves nothing behind.
+    for (file, scene) in class.scenes.iter().zip(&loaded) {
+        let shown = files::shown(&file.path);
+        (plan.choices.options(scene, 2, 2))
+            .map_err(|error| GradeError::Failed(format!("{shown}: {error}")))?;
+    }
     report.create()?;
     let mut pairs = class.pairs();
     if let Some((k, n)) = plan.shard {
@@ -508,7 +515,8 @@ impl Grader<'_> {
         };
         cell.get_or_init(|| {
             let scene = &self.scenes[index];
-            let options = self.plan.choices.options(scene, width, height)?;
+            let options = (self.plan.choices.options(scene, width, height))
+                .map_err(|error| error.to_string())?;
             // One thread: the pool's other threads grade other pairs meanwhile.
             let options = Options {
                 threads: 1,

@@ -2,6 +2,7 @@
 //! page's controls) name it: the choices behind an [`Options`], and the flags that
 //! reproduce them.
 
+use super::variant::ChoiceError;
 use super::{DEFAULT_MAX_DIST, Options, Show, Stage, Variant};
 use crate::scene::Scene;
 use crate::shapes::kernel::KernelChoice;
@@ -68,12 +69,9 @@ pub fn size_problem(width: u64, height: u64, max_pixels: u64) -> Option<String> 
 
 impl Choices {
     /// Fails on a choice no render can take, before any scene is read.
-    pub fn check(&self) -> Result<(), String> {
+    pub fn check(&self) -> Result<(), ChoiceError> {
         if self.max_dist.is_nan() || self.max_dist <= 0.0 {
-            return Err(format!(
-                "--max-dist must be greater than 0, found {}",
-                self.max_dist
-            ));
+            return Err(ChoiceError::MaxDist(self.max_dist));
         }
         Ok(())
     }
@@ -81,7 +79,12 @@ impl Choices {
     /// The options for a `width` x `height` render of `scene` (one thread), or why the
     /// choices cannot go together (two variants replacing one rule) or cannot apply to
     /// the scene (a variant scoped to a line that starts no record of its kind).
-    pub fn options(&self, scene: &Scene, width: usize, height: usize) -> Result<Options, String> {
+    pub fn options(
+        &self,
+        scene: &Scene,
+        width: usize,
+        height: usize,
+    ) -> Result<Options, ChoiceError> {
         self.check()?;
         let options = Options {
             max_dist: self.max_dist,

@@ -27,7 +27,7 @@ pub use record::{Event, LightStep, Skip, Stats};
 pub use shading::PatternNote;
 pub use stage::{Show, Stage};
 pub use trace::{CourseIds, Trace, Tracing, trace, tracing};
-pub use variant::{Kind, VARIANTS, Variant, Variants};
+pub use variant::{ChoiceError, Kind, VARIANTS, Variant, Variants};
 
 /// The largest precision `compare` takes: how far past its answer a query goes on
 /// testing objects while the margins are recorded, at most.

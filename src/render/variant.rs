@@ -20,6 +20,40 @@ use std::sync::Arc;
 /// The ε of `shadow-epsilon` unless another is given (`shadow-epsilon=1e-3`).
 pub const DEFAULT_EPSILON: f64 = 1e-6;
 
+/// Why render choices cannot go together, or cannot apply to a scene. None of the
+/// messages starts with `error: `, which the command line adds.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ChoiceError {
+    /// `--max-dist` is not a positive number.
+    #[error("--max-dist must be greater than 0, found {0}")]
+    MaxDist(f64),
+    /// Two variants replace the same rule for the same records.
+    #[error("the variants {first} and {second} replace the same rule: give one of them")]
+    Conflict {
+        /// The variant given first, as its id (or the kernel's name).
+        first: String,
+        /// The one given second.
+        second: String,
+    },
+    /// More variants than a render holds.
+    #[error("at most {0} variants apply at once")]
+    TooMany(usize),
+    /// A scoped variant names a line that starts no record of the kinds it applies to.
+    #[error("--variant {id}: {there}; {applies} applies to {kinds}, and {lines}")]
+    Scope {
+        /// The variant as given (`cone-scale@3`).
+        id: String,
+        /// What starts on its line, if anything ("line 3 starts a sphere").
+        there: String,
+        /// The variant's id without scope.
+        applies: &'static str,
+        /// The kinds of record it applies to, plural.
+        kinds: &'static str,
+        /// The lines that would do, or that the scene has none.
+        lines: String,
+    },
+}
+
 /// Where a variant's rule lives.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Site {
@@ -654,13 +688,13 @@ impl Variants {
         self.list[0].is_none()
     }
 
-    fn push(&mut self, variant: Variant) -> Result<(), String> {
+    fn push(&mut self, variant: Variant) -> Result<(), ChoiceError> {
         match self.list.iter_mut().find(|v| v.is_none()) {
             Some(slot) => {
                 *slot = Some(variant);
                 Ok(())
             }
-            None => Err(format!("at most {} variants apply at once", Variants::MOST)),
+            None => Err(ChoiceError::TooMany(Variants::MOST)),
         }
     }
 }
@@ -669,13 +703,11 @@ impl Options {
     /// These options with `variant` applied; an error when a variant already applied
     /// replaces the same rule for the same records (two byte rules, two divisors, two
     /// kernels, two MAX_DISTs, shadow-epsilon twice for one object).
-    pub fn with_variant(&self, variant: Variant) -> Result<Options, String> {
+    pub fn with_variant(&self, variant: Variant) -> Result<Options, ChoiceError> {
         let mut options = *self;
-        let conflict = |first: String| {
-            format!(
-                "the variants {first} and {} replace the same rule: give one of them",
-                variant.id()
-            )
+        let conflict = |first: String| ChoiceError::Conflict {
+            first,
+            second: variant.id(),
         };
         match variant.row().site {
             Site::Option => {
@@ -771,7 +803,7 @@ pub(crate) fn output_row(y: usize, height: usize, upside_down: bool) -> usize {
 
 /// Checks that every scoped variant of `options` names the line of a record of the kind it
 /// applies to in `scene`; the error names the lines that would do.
-pub fn check_scopes(options: &Options, scene: &Scene) -> Result<(), String> {
+pub fn check_scopes(options: &Options, scene: &Scene) -> Result<(), ChoiceError> {
     for variant in options.variants.iter() {
         let Some(line) = variant.line else { continue };
         let row = variant.row();
@@ -781,20 +813,18 @@ pub fn check_scopes(options: &Options, scene: &Scene) -> Result<(), String> {
                 .map(|o| o.line)
                 .collect()
         };
-        let (fits, kinds, what) = match row.scope {
-            Scope::ImageOrObject(kinds) | Scope::Object(kinds) => {
-                (objects(kinds), kinds.name(), "objects")
-            }
+        let (fits, kinds) = match row.scope {
+            Scope::ImageOrObject(kinds) | Scope::Object(kinds) => (objects(kinds), kinds.name()),
             Scope::ImageOrLight | Scope::Light => {
                 let lines = scene.lights.iter().map(|l| l.line).collect();
-                (lines, "lights", "lights")
+                (lines, "lights")
             }
             Scope::Record => {
                 let mut lines: Vec<usize> = (scene.objects.iter().map(|o| o.line))
                     .chain(scene.lights.iter().map(|l| l.line))
                     .collect();
                 lines.sort_unstable();
-                (lines, "records", "records")
+                (lines, "records")
             }
             Scope::Image => continue,
         };
@@ -813,12 +843,13 @@ pub fn check_scopes(options: &Options, scene: &Scene) -> Result<(), String> {
                 format!("the {kinds} start on lines {}", list.join(", "))
             }
         };
-        let _ = what;
-        return Err(format!(
-            "--variant {}: {there}; {} applies to {kinds}, and {lines}",
-            variant.id(),
-            row.id
-        ));
+        return Err(ChoiceError::Scope {
+            id: variant.id(),
+            there,
+            applies: row.id,
+            kinds,
+            lines,
+        });
     }
     Ok(())
 }
@@ -1477,13 +1508,13 @@ mod tests {
         let wrong = Options::new(4, 3)
             .with_variant(Variant::of(Kind::ConeScale).at(3))
             .unwrap();
-        let error = check_scopes(&wrong, &scene).unwrap_err();
+        let error = check_scopes(&wrong, &scene).unwrap_err().to_string();
         assert!(error.contains("line 3 starts a sphere"), "{error}");
         assert!(error.contains("has no cones"), "{error}");
         let light = Options::new(4, 3)
             .with_variant(Variant::of(Kind::NoLight).at(3))
             .unwrap();
-        let error = check_scopes(&light, &scene).unwrap_err();
+        let error = check_scopes(&light, &scene).unwrap_err().to_string();
         assert!(error.contains("the lights start on lines 9"), "{error}");
         assert!(check_scopes(&options, &scene).is_ok());
     }

@@ -500,6 +500,49 @@ fn grade_refuses_what_it_cannot_read_or_would_overwrite() {
     fs::remove_dir_all(&dir).unwrap();
 }
 
+/// Each refusal says `error: ` once, at its start, whichever layer found it: the
+/// command line, a file, a scene, a reference's options or the report folder.
+#[test]
+fn each_refusal_says_error_once() {
+    let dir = common::folder("grade-error-once");
+    small_class(&dir);
+    fs::create_dir_all(dir.join("mine")).unwrap();
+    fs::write(dir.join("mine/thesis.tex"), b"years of work").unwrap();
+    let cases: [&[&str]; 5] = [
+        // A record line the scene does not have (studio's objects start later).
+        &[
+            "grade",
+            "--variant",
+            "hidden@2",
+            "scenes",
+            "subs",
+            "-o",
+            "r1",
+        ],
+        &["grade", "scenes", "subs", "extra", "-o", "r2"],
+        &["grade", "nowhere", "subs", "-o", "r3"],
+        &["grade", "scenes", "subs", "-o", "mine"],
+        &["grade", "--scheme", "scenes", "scenes", "subs", "-o", "r4"],
+    ];
+    let mut said = Vec::new();
+    for args in cases {
+        let output = run_in(&dir, args);
+        assert_eq!(output.status.code(), Some(2), "{args:?}");
+        let stderr = String::from_utf8_lossy(&output.stderr).into_owned();
+        assert!(stderr.starts_with("error: "), "{args:?}: {stderr}");
+        assert_eq!(stderr.matches("error: ").count(), 1, "{args:?}: {stderr}");
+        said.push(stderr);
+    }
+    assert!(
+        said[0].contains("studio.txt: --variant hidden@2: line 2 starts no record"),
+        "{}",
+        said[0]
+    );
+    // Refused before the report folder was made.
+    assert!(!dir.join("r1").exists());
+    fs::remove_dir_all(&dir).unwrap();
+}
+
 /// The `.partial` files under `dir` (the report folder and its images/).
 fn partial_files(dir: &Path) -> Vec<PathBuf> {
     let mut found = Vec::new();

@@ -61,7 +61,7 @@ fn choices(json: &str) -> Result<Choices, String> {
             choices.variants.push(variant);
         }
     }
-    choices.check()?;
+    choices.check().map_err(|error| error.to_string())?;
     Ok(choices)
 }
 
