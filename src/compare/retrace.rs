@@ -7,7 +7,7 @@ use crate::render::record::{Event, LightStep, Recorder};
 use crate::render::tiles;
 use crate::render::tracer::Tracer;
 use crate::render::variant::{Rulebook, Rules};
-use crate::render::{Forced, Near, Options, Override, Plain, Setup, each_pixel};
+use crate::render::{Forced, Noted, Options, Override, Plain, Setup, each_pixel};
 use crate::scene::Scene;
 use crate::shapes::kernel::{Kernel, with_kernel};
 use glam::DVec3;
@@ -103,8 +103,8 @@ pub(crate) fn render_forced_each(
 }
 
 /// What the paths of the pixels `indices` (output order) tell a recorder `R` each, with
-/// the shapes' decisions on every object tested ([`Near`] with no reach: the tiles and
-/// the hierarchy still choose which are tested): the decisions the diagnosis may flip.
+/// the shapes' decisions on every object tested ([`Noted`]: the tiles and the hierarchy
+/// still choose which are tested): the decisions the diagnosis may flip.
 pub(crate) fn recorded<R: Recorder + Default>(
     scene: &Scene,
     options: &Options,
@@ -112,7 +112,7 @@ pub(crate) fn recorded<R: Recorder + Default>(
 ) -> Vec<R> {
     at_pixels(scene, options, indices, |_, tracer, x, y| {
         let mut path = R::default();
-        with_kernel!(options.kernel, K => tracer.pixel::<K>(x, y, Near(0.0), &mut path));
+        with_kernel!(options.kernel, K => tracer.pixel::<K>(x, y, Noted, &mut path));
         path
     })
 }

@@ -21,7 +21,7 @@ pub(crate) mod tracer;
 pub mod variant;
 
 pub use choices::{Choices, by_name, size_problem};
-pub(crate) use objects::{EveryObject, Forced, Near, Plain};
+pub(crate) use objects::{EveryObject, Forced, Near, Noted, Plain};
 pub use objects::{Override, Rays};
 pub use record::{Event, LightStep, Skip, Stats};
 pub use shading::PatternNote;

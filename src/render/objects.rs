@@ -27,7 +27,7 @@ use crate::shapes::{HitNote, Notes, Ray, clearly_no_root, discriminant_note};
 use crate::threads::Threads;
 
 /// How a query of the aggregate is answered: the caller's choice, an explicit value
-/// ([`Plain`], [`EveryObject`] or [`Near`]), never the recorder's. The answer is the same
+/// ([`Plain`], [`EveryObject`], [`Near`], [`Noted`] or [`Forced`]), never the recorder's. The answer is the same
 /// in every mode; what differs is which objects are tested and what the recorder hears.
 pub(crate) trait Query: Copy {
     /// Whether every object is tested in file order with its reasons, as the course's
@@ -42,6 +42,11 @@ pub(crate) trait Query: Copy {
     /// Whether camera rays may test their tiles' lists: not every object, and no
     /// decision forced (a list leaves out what a nearer plane hides from its tile).
     const TILES: bool = !Self::EVERY_OBJECT;
+
+    /// Whether a shadow query tests every object that may block it, rather than stopping
+    /// at the first blocker: the margins', where a shadow is as sure as its surest
+    /// blocker.
+    const EVERY_BLOCKER: bool = false;
 
     /// How far past its answer (the best hit, or the light) the query goes on testing
     /// objects, as a share of the distance.
@@ -86,18 +91,28 @@ impl Query for EveryObject {
 
 /// The answer, and every object that comes within the reach (a share of the distance,
 /// at most [`MARGIN_REACH`](super::record::MARGIN_REACH)) of changing it, each test's decisions told: the margins of
-/// `compare`'s fragile pixels. With a reach, a shadow query tests every object that may
-/// block it, not only the first: the shadow is as sure as the surest of its blockers.
+/// `compare`'s fragile pixels. A shadow query tests every object that may block it, not
+/// only the first: the shadow is as sure as the surest of its blockers.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Near(pub(crate) f64);
 
 impl Query for Near {
     const NOTES: bool = true;
+    const EVERY_BLOCKER: bool = true;
 
     #[inline(always)]
     fn reach(self) -> f64 {
         self.0
     }
+}
+
+/// The answer, with each test's decisions told, through the tiles and the hierarchy as
+/// the plain render tests: the decisions on a pixel's path that a diagnosis may flip.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Noted;
+
+impl Query for Noted {
+    const NOTES: bool = true;
 }
 
 /// The answer with some of the tracer's decisions forced the other way, the same for
@@ -405,7 +420,7 @@ impl<'a, B: Rulebook> Objects<'a, B> {
         let blocks =
             |index: usize, t: f64| t > least && t < dist && self.boxes.admits(index, ray, t);
         // A query of margins tests every blocker: the shadow is as sure as the surest.
-        let every_blocker = margins::<Q>() && query.reach() > 0.0;
+        let every_blocker = Q::EVERY_BLOCKER;
         let mut blocker = None;
         let mut test = |index: usize, rec: &mut R| {
             if let Some(t) = test_and_record::<K, Q, R>(index, &objects[index], ray, query, rec)
@@ -414,7 +429,7 @@ impl<'a, B: Rulebook> Objects<'a, B> {
             {
                 blocker = Some((index, t));
             }
-            blocker.is_some() && !every_blocker
+            !every_blocker && blocker.is_some()
         };
         if let Some(bvh) = self.bvh.as_ref().filter(|_| !Q::EVERY_OBJECT) {
             let limit = dist * (1.0 + query.reach());
