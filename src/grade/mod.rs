@@ -607,3 +607,89 @@ pub fn merge(paths: &[PathBuf], report_folder: &Path, hooks: &Hooks) -> Result<G
     report.write_grades(&grades)?;
     Ok(grades)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::sync::atomic::{AtomicUsize, Ordering};
+
+    /// The library's grading without the command line: a class of one student who
+    /// handed in the reference of one scene and another scene's image with one channel
+    /// off, graded with the progress told pair by pair and the files written through the
+    /// hook.
+    #[test]
+    fn a_class_is_graded_through_the_library_with_its_hooks_told() {
+        let dir = std::env::temp_dir().join(format!("legacy-rt-grade-lib-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        let (scenes, student) = (dir.join("scenes"), dir.join("subs/ada"));
+        std::fs::create_dir_all(&scenes).unwrap();
+        std::fs::create_dir_all(&student).unwrap();
+        for (name, off) in [("mirrors", false), ("planes", true)] {
+            let text = std::fs::read_to_string(format!("examples/{name}.txt")).unwrap();
+            std::fs::write(scenes.join(format!("{name}.txt")), &text).unwrap();
+            let scene = crate::load(&text).unwrap();
+            let mut image = crate::render(&scene, &Options::new(40, 30), |_| {});
+            if off {
+                image.pixels[0][0] = image.pixels[0][0].wrapping_add(9);
+            }
+            let ppm = crate::image_output::ppm(&image);
+            std::fs::write(student.join(format!("{name}.ppm")), ppm).unwrap();
+        }
+        let (pairs, graded, done) = (
+            AtomicUsize::new(0),
+            AtomicUsize::new(0),
+            AtomicUsize::new(0),
+        );
+        let progress = |step: Progress| match step {
+            Progress::Pairs(n) => pairs.store(n, Ordering::SeqCst),
+            Progress::Graded => _ = graded.fetch_add(1, Ordering::SeqCst),
+            Progress::Done => _ = done.fetch_add(1, Ordering::SeqCst),
+        };
+        let hooks = Hooks {
+            temporary: |_, _| {},
+            progress: &progress,
+        };
+        let plan = Plan {
+            closeness: Closeness::default(),
+            size: None,
+            choices: Choices::default(),
+            threads: 1,
+            worst: 3,
+            max_pixels: 1 << 20,
+            shard: None,
+        };
+        let report = dir.join("report");
+        let grades = grade(
+            [&scenes, &dir.join("subs")],
+            &report,
+            None,
+            None,
+            &plan,
+            &hooks,
+        )
+        .unwrap();
+        let verdicts: Vec<(&str, &str)> = (grades.rows.iter())
+            .map(|r| (r.scene.as_str(), r.verdict.as_str()))
+            .collect();
+        assert_eq!(verdicts, [("mirrors", "match"), ("planes", "differ")]);
+        assert_eq!(grades.rows[1].differing_pixels, Some(1));
+        assert_eq!(grades.rows[0].points, 1.0);
+        assert_eq!(grades.rows[1].points, 0.0);
+        assert_eq!(
+            [&pairs, &graded, &done].map(|n| n.load(Ordering::SeqCst)),
+            [2, 2, 1]
+        );
+        assert!(report.join("grades.csv").is_file() && report.join("index.html").is_file());
+        // Grading again into a folder that is not a report is refused, typed.
+        let refused = grade(
+            [&scenes, &dir.join("subs")],
+            &scenes,
+            None,
+            None,
+            &plan,
+            &hooks,
+        );
+        assert!(matches!(refused, Err(GradeError::Failed(_))), "{refused:?}");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}
