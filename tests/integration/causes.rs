@@ -478,6 +478,90 @@ fn an_independent_tracer_s_mistakes_are_each_named() {
     }
 }
 
+#[test]
+fn an_independent_tracer_s_rules_of_the_colours_and_the_z_rule_are_each_named() {
+    // The tiny tracer (spec §4-§5, not the program's code) with the mistakes of spec
+    // §7.3 that change every lit colour or every byte, and §7.5's z tolerance, alone
+    // and with a mistake of the whole image.
+    let dir = folder("causes-tiny-rules");
+    let scene = example("shadows");
+    let text = std::fs::read_to_string(&scene).unwrap();
+    // The floor raised to y = -2.6: the camera rays through the window's bottom rows
+    // meet it between the eye and the window, at z from 0 to 0.4 (the bottom row's ray
+    // reaches y = -2.6 at 2.6/3 of its way to z = 0), where spec §5.1 makes them miss. A
+    // tolerance of 0.2 counts the nearer half of those: not what no-z-rule draws.
+    let raised = dir.join("raised-floor.txt");
+    std::fs::write(
+        &raised,
+        text.replace("0 -3.5 0      point", "0 -2.6 0      point"),
+    )
+    .unwrap();
+    let rule = |set: fn(&mut Mistakes)| {
+        let mut mistakes = Mistakes::default();
+        set(&mut mistakes);
+        mistakes
+    };
+    let cases: Vec<(&str, &PathBuf, Mistakes, Vec<&str>)> = vec![
+        (
+            "falloff",
+            &scene,
+            rule(|m| m.square_falloff = true),
+            vec!["square-falloff"],
+        ),
+        (
+            "no-distance",
+            &scene,
+            rule(|m| m.no_distance = true),
+            vec!["no-distance"],
+        ),
+        (
+            "round",
+            &scene,
+            rule(|m| m.round_bytes = true),
+            vec!["round-bytes"],
+        ),
+        (
+            "scale",
+            &scene,
+            rule(|m| m.scale_256 = true),
+            vec!["scale-256"],
+        ),
+        (
+            "z",
+            &raised,
+            rule(|m| m.z_tolerance = Some(0.2)),
+            vec!["z-tolerance=0.2"],
+        ),
+        (
+            "row-falloff",
+            &scene,
+            rule(|m| (m.square_falloff, m.row_offset) = (true, 1)),
+            vec!["row-offset=1", "square-falloff"],
+        ),
+        (
+            "jitter-z",
+            &raised,
+            rule(|m| (m.z_tolerance, m.jitter) = (Some(0.2), Some(5))),
+            vec!["jitter", "z-tolerance=0.2"],
+        ),
+    ];
+    let size = (SIZE.0 as usize, SIZE.1 as usize);
+    let mut failures = Vec::new();
+    for (name, scene, mistakes, expected) in cases {
+        let student = dir.join(format!("{name}.ppm"));
+        let text = std::fs::read_to_string(scene).unwrap();
+        write_ppm(&student, size, &tiny_tracer(&text, size, mistakes));
+        let (found, json) = causes(scene, &student);
+        if found != expected {
+            failures.push(format!(
+                "{name}: {found:?}, expected {expected:?}: {}",
+                json["diagnosis"]
+            ));
+        }
+    }
+    assert!(failures.is_empty(), "{failures:#?}");
+}
+
 /// examples/tube.txt with a second light on the tube's other side: the floor inside the
 /// tube is in the shadow of its wall toward either light, and a shadow ray from there
 /// starts inside the tube.

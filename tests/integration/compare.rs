@@ -771,6 +771,17 @@ pub(super) struct Mistakes {
     /// A cylinder's hit is its smaller root in bounds even when it is not positive (then
     /// no hit): the course program's cylinder, which a ray whose base is inside misses.
     pub behind_root: bool,
+    /// A plane's hit counts up to z = E rather than 0, on every ray (spec §5.1's rule
+    /// with a tolerance).
+    pub z_tolerance: Option<f64>,
+    /// cos θ / dist² rather than spec §4.3's cos θ / dist.
+    pub square_falloff: bool,
+    /// No division by the distance (spec §4.2 step 6 left out).
+    pub no_distance: bool,
+    /// The bytes rounded half up, floor(255 c + 0.5), rather than spec §4.7's truncation.
+    pub round_bytes: bool,
+    /// The bytes trunc(256 c), clamped to 255, rather than trunc(255 c).
+    pub scale_256: bool,
 }
 
 /// A tiny tracer of spec §4, §5.1-§5.2 and §5.6's cylinder, written here for spheres,
@@ -847,7 +858,7 @@ pub(super) fn tiny_tracer(text: &str, (w, h): (usize, usize), mistakes: Mistakes
                     return None;
                 }
                 let t = (dot(n, q) - dot(n, b)) / nd;
-                if b[2] + t * d[2] > 0.0 {
+                if b[2] + t * d[2] > mistakes.z_tolerance.unwrap_or(0.0) {
                     return None;
                 }
                 t
@@ -924,13 +935,25 @@ pub(super) fn tiny_tracer(text: &str, (w, h): (usize, usize), mistakes: Mistakes
                 let blocked = (objects.iter().enumerate())
                     .filter(|&(j, _)| j != i && Some(j) != mistakes.no_shadow)
                     .any(|(_, o)| hit(&o.2, point, u).is_some_and(|s| s < dist));
+                let falloff = match mistakes.square_falloff {
+                    true => dist * dist,
+                    false => dist,
+                };
                 if !blocked {
                     for c in 0..3 {
-                        colour[c] += diffuse[c] * emissivity[c] * cos / dist;
+                        colour[c] += diffuse[c] * emissivity[c] * cos / falloff;
                     }
                 }
             }
-            let byte = |c: f64| (c / t).clamp(0.0, 1.0) * 255.0;
+            let divisor = if mistakes.no_distance { 1.0 } else { t };
+            let byte = |c: f64| {
+                let c = (c / divisor).clamp(0.0, 1.0);
+                match (mistakes.round_bytes, mistakes.scale_256) {
+                    (true, _) => (c * 255.0 + 0.5).floor(),
+                    (_, true) => (c * 256.0).min(255.0),
+                    _ => c * 255.0,
+                }
+            };
             pixels[r * w + x] = colour.map(|c| byte(c) as u8);
         }
     }
