@@ -782,6 +782,8 @@ pub(super) struct Mistakes {
     pub round_bytes: bool,
     /// The bytes trunc(256 c), clamped to 255, rather than trunc(255 c).
     pub scale_256: bool,
+    /// A hit farther than D from the ray's base is a miss, on every ray.
+    pub far_clip: Option<f64>,
 }
 
 /// A tiny tracer of spec §4, §5.1-§5.2 and §5.6's cylinder, written here for spheres,
@@ -883,7 +885,7 @@ pub(super) fn tiny_tracer(text: &str, (w, h): (usize, usize), mistakes: Mistakes
                 }
             }
         };
-        (t > 0.0).then_some(t)
+        (t > 0.0 && mistakes.far_clip.is_none_or(|far| t <= far)).then_some(t)
     };
     let mut pixels = vec![[0u8; 3]; w * h];
     // xorshift64*, a number in [0, 1) each call.
