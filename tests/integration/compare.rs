@@ -784,6 +784,13 @@ pub(super) struct Mistakes {
     pub scale_256: bool,
     /// A hit farther than D from the ray's base is a miss, on every ray.
     pub far_clip: Option<f64>,
+    /// No shadow rays: every light reaches every surface that faces it.
+    pub no_shadows: bool,
+    /// Output row r holds pixel row r (the bottom row written first).
+    pub upside_down: bool,
+    /// The world point (x + 0.5)/W·ww - ww/2, and the same for y, rather than spec §4.1's
+    /// x/(W-1)·ww - ww/2.
+    pub pixel_centre: bool,
 }
 
 /// A tiny tracer of spec §4, §5.1-§5.2 and §5.6's cylinder, written here for spheres,
@@ -897,15 +904,24 @@ pub(super) fn tiny_tracer(text: &str, (w, h): (usize, usize), mistakes: Mistakes
         (state.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 53) as f64
     };
     for r in 0..h {
-        let y = (h - 1 - r + mistakes.row_offset) as f64;
+        let row = match mistakes.upside_down {
+            true => r,
+            false => h - 1 - r,
+        };
+        let y = (row + mistakes.row_offset) as f64;
         for x in 0..w {
             let (dx, dy) = match mistakes.jitter {
                 Some(_) => (random() - 0.5, random() - 0.5),
                 None => (0.0, 0.0),
             };
+            // Spec §4.1's x/(W-1), or the centre of a pixel of a window cut into W.
+            let world = |i: f64, n: usize, size: f64| match mistakes.pixel_centre {
+                true => (i + 0.5) / n as f64 * size - size / 2.0,
+                false => i / (n - 1) as f64 * size - size / 2.0,
+            };
             let p = [
-                (x as f64 + dx) / (w - 1) as f64 * window[0] - window[0] / 2.0,
-                (y + dy) / (h - 1) as f64 * window[1] - window[1] / 2.0,
+                world(x as f64 + dx, w, window[0]),
+                world(y + dy, h, window[1]),
                 0.0,
             ];
             let d = unit(sub(p, eye));
@@ -934,9 +950,10 @@ pub(super) fn tiny_tracer(text: &str, (w, h): (usize, usize), mistakes: Mistakes
                 if cos <= 0.0 {
                     continue;
                 }
-                let blocked = (objects.iter().enumerate())
-                    .filter(|&(j, _)| j != i && Some(j) != mistakes.no_shadow)
-                    .any(|(_, o)| hit(&o.2, point, u).is_some_and(|s| s < dist));
+                let blocked = !mistakes.no_shadows
+                    && (objects.iter().enumerate())
+                        .filter(|&(j, _)| j != i && Some(j) != mistakes.no_shadow)
+                        .any(|(_, o)| hit(&o.2, point, u).is_some_and(|s| s < dist));
                 let falloff = match mistakes.square_falloff {
                     true => dist * dist,
                     false => dist,
