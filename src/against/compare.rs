@@ -1392,9 +1392,9 @@ mod tests {
         let Some(spec1) = real_trace("spec1") else {
             return;
         };
-        // Printed unnormalised: (1.993473, 0.609936, 6.095286); with its x negated the
-        // angle to the normal (0.003264, -0.304968, 0.952357) barely moves, with its
-        // z negated the light is behind the surface.
+        // Printed unnormalised: (1.993473, 0.609936, 6.095286). With its z negated it
+        // points behind the surface (the normal is (0.003264, -0.304968, 0.952357)):
+        // cos θ turns negative and the light's term, which the bytes hold, is lost.
         let check = only(edited(&spec1, RED, "unit vector to light is", 0, |l| {
             l.replace("6.095286", "-6.095286")
         }));

@@ -478,6 +478,34 @@ fn an_independent_tracer_s_mistakes_are_each_named() {
     }
 }
 
+/// `mistakes` with `set` applied: one switch of the tiny tracer, or two.
+fn rule(set: fn(&mut Mistakes)) -> Mistakes {
+    let mut mistakes = Mistakes::default();
+    set(&mut mistakes);
+    mistakes
+}
+
+/// Each case's scene drawn by the tiny tracer with its mistakes into `dir`, and
+/// diagnosed: its causes must be the ids expected, in order, and no other (every case
+/// that is not is listed).
+fn diagnosed_as_drawn(dir: &Path, cases: Vec<(&str, &PathBuf, Mistakes, Vec<&str>)>) {
+    let size = (SIZE.0 as usize, SIZE.1 as usize);
+    let mut failures = Vec::new();
+    for (name, scene, mistakes, expected) in cases {
+        let student = dir.join(format!("{name}.ppm"));
+        let text = std::fs::read_to_string(scene).unwrap();
+        write_ppm(&student, size, &tiny_tracer(&text, size, mistakes));
+        let (found, json) = causes(scene, &student);
+        if found != expected {
+            let diagnosis = &json["diagnosis"];
+            failures.push(format!(
+                "{name}: {found:?}, expected {expected:?}: {diagnosis}"
+            ));
+        }
+    }
+    assert!(failures.is_empty(), "{failures:#?}");
+}
+
 #[test]
 fn an_independent_tracer_s_rules_of_the_colours_and_the_z_rule_are_each_named() {
     // The tiny tracer (spec §4-§5, not the program's code) with the mistakes of spec
@@ -496,11 +524,6 @@ fn an_independent_tracer_s_rules_of_the_colours_and_the_z_rule_are_each_named() 
         text.replace("0 -3.5 0      point", "0 -2.6 0      point"),
     )
     .unwrap();
-    let rule = |set: fn(&mut Mistakes)| {
-        let mut mistakes = Mistakes::default();
-        set(&mut mistakes);
-        mistakes
-    };
     let cases: Vec<(&str, &PathBuf, Mistakes, Vec<&str>)> = vec![
         (
             "falloff",
@@ -545,21 +568,7 @@ fn an_independent_tracer_s_rules_of_the_colours_and_the_z_rule_are_each_named() 
             vec!["jitter", "z-tolerance=0.2"],
         ),
     ];
-    let size = (SIZE.0 as usize, SIZE.1 as usize);
-    let mut failures = Vec::new();
-    for (name, scene, mistakes, expected) in cases {
-        let student = dir.join(format!("{name}.ppm"));
-        let text = std::fs::read_to_string(scene).unwrap();
-        write_ppm(&student, size, &tiny_tracer(&text, size, mistakes));
-        let (found, json) = causes(scene, &student);
-        if found != expected {
-            failures.push(format!(
-                "{name}: {found:?}, expected {expected:?}: {}",
-                json["diagnosis"]
-            ));
-        }
-    }
-    assert!(failures.is_empty(), "{failures:#?}");
+    diagnosed_as_drawn(&dir, cases);
 }
 
 #[test]
@@ -569,11 +578,6 @@ fn an_independent_tracer_s_images_of_course_scenes_are_diagnosed_right() {
     let Some(a02) = course("a02") else { return };
     let (a03, a04) = (course("a03").unwrap(), course("a04").unwrap());
     let dir = folder("causes-tiny-course");
-    let rule = |set: fn(&mut Mistakes)| {
-        let mut mistakes = Mistakes::default();
-        set(&mut mistakes);
-        mistakes
-    };
     let cases: Vec<(&str, &PathBuf, Mistakes, Vec<&str>)> = vec![
         // The tiny tracer's sphere root is the notes' (-b - sqrt(b² - 4ac)) / 2a in f64:
         // with the rows put back, most of what still differs is where that formula and
@@ -610,21 +614,7 @@ fn an_independent_tracer_s_images_of_course_scenes_are_diagnosed_right() {
             vec!["upside-down"],
         ),
     ];
-    let size = (SIZE.0 as usize, SIZE.1 as usize);
-    let mut failures = Vec::new();
-    for (name, scene, mistakes, expected) in cases {
-        let student = dir.join(format!("{name}.ppm"));
-        let text = std::fs::read_to_string(scene).unwrap();
-        write_ppm(&student, size, &tiny_tracer(&text, size, mistakes));
-        let (found, json) = causes(scene, &student);
-        if found != expected {
-            let diagnosis = &json["diagnosis"];
-            failures.push(format!(
-                "{name}: {found:?}, expected {expected:?}: {diagnosis}"
-            ));
-        }
-    }
-    assert!(failures.is_empty(), "{failures:#?}");
+    diagnosed_as_drawn(&dir, cases);
 }
 
 /// examples/tube.txt with a second light on the tube's other side: the floor inside the
