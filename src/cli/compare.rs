@@ -221,7 +221,9 @@ pub(super) fn add_trace_commands(
     options: &legacy_rt::Options,
     scene: &str,
 ) {
-    report.add_trace_commands(|x, y| compare::text::trace_command(choices, options, scene, x, y));
+    report.add_trace_commands(|x, y, under| {
+        compare::text::trace_command(choices, options, scene, x, y, under)
+    });
 }
 
 /// Prints the report, as text or JSON, on standard output.

@@ -238,30 +238,29 @@ pub struct Report {
     pub expected_size: Option<[usize; 2]>,
 }
 
+/// A light as the diagnosis names it: "light (line 19)".
+pub(crate) fn light_name(scene: &Scene, light: usize) -> String {
+    format!("light (line {})", scene.lights[light].line)
+}
+
 impl Report {
-    /// Gives each pixel the report names (the worst, each diagnosis', each cause's) the
-    /// `trace` command that shows it: `command(x, y)`.
-    pub fn add_trace_commands(&mut self, command: impl Fn(usize, usize) -> String) {
+    /// Gives each pixel the report names (the worst, each diagnosis', each cause's, each
+    /// decision flip's) the `trace` command that shows it: `command(x, y, under)`, where
+    /// `under` are the whole-image causes a decision flip was found under (a row off),
+    /// which its pixel is traced with.
+    pub fn add_trace_commands(&mut self, command: impl Fn(usize, usize, &[Variant]) -> String) {
         for worst in &mut self.worst {
-            worst.trace = Some(command(worst.x, worst.y));
+            worst.trace = Some(command(worst.x, worst.y, &[]));
         }
         for found in self.diagnosis.iter_mut().flatten() {
-            found.trace = found.pixel.map(|[x, y]| command(x, y));
+            found.trace = found.pixel.map(|[x, y]| command(x, y, &[]));
         }
         for cause in self.causes.iter_mut().flatten() {
-            cause.trace = cause.pixel.map(|[x, y]| command(x, y));
+            cause.trace = cause.pixel.map(|[x, y]| command(x, y, &[]));
         }
-        // A decision found under a whole-image cause (a row off) is traced under it.
         for flip in self.flips.iter_mut().flatten() {
             let [x, y] = flip.pixel;
-            let mut trace = command(x, y);
-            if let Some((head, scene)) = trace.split_once(" < ")
-                && !flip.under.is_empty()
-            {
-                let ids: Vec<String> = flip.under.iter().map(|v| v.id()).collect();
-                trace = format!("{head} --variant {} < {scene}", ids.join(","));
-            }
-            flip.trace = Some(trace);
+            flip.trace = Some(command(x, y, &flip.under));
         }
     }
 }

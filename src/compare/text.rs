@@ -35,18 +35,27 @@ pub fn shell_word(path: &str) -> String {
 }
 
 /// The `trace` command that explains the pixel at (x, y) from the lower left of the
-/// reference rendered from the scene file `scene` at `options`' size with `choices`: the
-/// pixel whose ray is drawn there (under `--variant upside-down`, the mirrored row's).
+/// reference rendered from the scene file `scene` at `options`' size with `choices`, and
+/// with the variants `under` besides (the whole-image causes a decision flip was found
+/// under): the pixel whose ray is drawn there (under `--variant upside-down`, the
+/// mirrored row's).
 pub fn trace_command(
     choices: &Choices,
     options: &Options,
     scene: &str,
     x: usize,
     y: usize,
+    under: &[Variant],
 ) -> String {
     let (w, h) = (options.width, options.height);
+    let mut choices = choices.clone();
+    choices.variants.extend(under);
+    // The options the reference took `under` with: the scene's, where they conflict.
+    let traced = (under.iter())
+        .try_fold(*options, |o, &v| o.with_variant(v))
+        .unwrap_or(*options);
     // The output row that holds (x, y), then the pixel row traced there.
-    let y = options.row_of(output_row(y.min(h - 1), h, false));
+    let y = traced.row_of(output_row(y.min(h - 1), h, false));
     let flags = choices.flags();
     format!(
         "legacy-rt trace {x} {y} {w} {h}{flags} < {}",

@@ -468,8 +468,8 @@ impl Grader<'_> {
                 let mut report =
                     compare::report(reference, &image, Some((scene_data, options)), &settings)
                         .map_err(|error| GradeError::Failed(error.to_string()))?;
-                report.add_trace_commands(|x, y| {
-                    compare::text::trace_command(choices, options, &scene_shown, x, y)
+                report.add_trace_commands(|x, y, under| {
+                    compare::text::trace_command(choices, options, &scene_shown, x, y, under)
                 });
                 (report, Some(reference))
             }

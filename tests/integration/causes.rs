@@ -692,6 +692,38 @@ fn a_cylinder_that_keeps_its_root_behind_the_base_is_one_group_of_decisions() {
 }
 
 #[test]
+fn a_decision_found_under_an_image_written_upside_down_is_traced_on_its_row() {
+    // The tiny tracer writes the image upside down, and its small sphere (line 25) casts
+    // no shadow. The decision is found in the reference turned over; the command that
+    // traces its pixel must trace the ray that pixel shows: the row turned over too.
+    let dir = folder("causes-flips-upside-down");
+    let scene = example("shadows");
+    let text = std::fs::read_to_string(&scene).unwrap();
+    let size = (SIZE.0 as usize, SIZE.1 as usize);
+    let mistakes = rule(|m| (m.upside_down, m.no_shadow) = (true, Some(3)));
+    let student = dir.join("upside-down-no-shadow.ppm");
+    write_ppm(&student, size, &tiny_tracer(&text, size, mistakes));
+    let (found, json) = causes(&scene, &student);
+    assert_eq!(
+        found.first().map(String::as_str),
+        Some("upside-down"),
+        "{json:#}"
+    );
+    let flips = json["flips"].as_array().unwrap();
+    let decision = "sphere (line 25) does not block shadow rays";
+    let flip = (flips.iter())
+        .find(|f| f["decision"] == decision)
+        .unwrap_or_else(|| panic!("{json:#}"));
+    let command = flip["trace"].as_str().unwrap();
+    assert!(command.contains("--variant upside-down <"), "{command}");
+    let trace = traced(command);
+    assert!(
+        trace.contains("blocked by sphere (line 25)"),
+        "{command}\n{trace}"
+    );
+}
+
+#[test]
 fn decision_flips_name_a_hidden_object_and_nothing_for_a_rule_of_the_colours() {
     let dir = folder("causes-flips-variants");
     let scene = example("shadows");

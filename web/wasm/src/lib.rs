@@ -280,7 +280,7 @@ impl Session {
             "course" => trace.course(scene),
             _ => trace.readable(scene),
         };
-        let command = compare::text::trace_command(&chosen, &options, scene_name, x, y);
+        let command = compare::text::trace_command(&chosen, &options, scene_name, x, y, &[]);
         let traced = serde_json::json!({
             "x": x,
             "y": y,
@@ -412,8 +412,8 @@ impl Session {
         let with_scene = Some((scene, &options));
         let mut report =
             compare::report(&reference, &student, with_scene, &settings).map_err(thrown)?;
-        report.add_trace_commands(|x, y| {
-            compare::text::trace_command(&chosen, &options, scene_name, x, y)
+        report.add_trace_commands(|x, y, under| {
+            compare::text::trace_command(&chosen, &options, scene_name, x, y, under)
         });
         let text = compare::text::text(&report, scene_name, &name, Some(&chosen));
         let diff = compare::diff_image(&reference, &student, levels).map_err(thrown)?;
