@@ -1421,17 +1421,26 @@ mod tests {
     }
 
     #[test]
-    fn a_light_with_an_unknown_id_is_read_against_the_light_its_centre_names() {
+    fn a_light_block_is_read_against_the_light_its_id_names_or_else_its_own() {
         let Some(spec1) = real_trace("spec1") else {
             return;
         };
-        // Light 1's block with an id no record has: its centre (0, 0, 5) and its
-        // direction still name light 1, so every value is read against light 1's term
-        // and agrees (read against light 2's, the distance and cos θ would not).
-        let found = edited(&spec1, RED, "light object id was", 0, |l| {
+        // Light 1's block (id 104) with light 2's id (105): read against light 2, whose
+        // centre (0, 5, -3) is not the printed (0, 0, 5).
+        let other = edited(&spec1, RED, "light object id was", 0, |l| {
+            l.replace("104", "105")
+        });
+        assert!(
+            other.iter().any(|c| c.quantity == "light centre"
+                && c.event == "camera ray, light 2 (point light, line 46)"),
+            "{other:#?}"
+        );
+        // With an id no record has, the block is still light 1's (its centre, its
+        // direction and its place all say so): every value agrees.
+        let unknown = edited(&spec1, RED, "light object id was", 0, |l| {
             l.replace("104", "999")
         });
-        assert!(found.is_empty(), "{found:#?}");
+        assert!(unknown.is_empty(), "{unknown:#?}");
     }
 
     #[test]

@@ -8,8 +8,7 @@ use super::render::write_image;
 use super::{Closeness, Failure, HowArgs, max_pixels, output_file, pixels, size, threads};
 use legacy_rt::compare::read::{Content, DEFAULT_MAX_PIXELS, content};
 use legacy_rt::compare::{self, Settings, Verdict};
-use legacy_rt::error::escaped;
-use legacy_rt::files::{MAX_INPUT, open_regular, read_all, read_image, same_file, text_of};
+use legacy_rt::files::{self, MAX_INPUT, open_regular, read_all, read_image, same_file, text_of};
 use std::fs::File;
 use std::io::{Read, Seek, SeekFrom};
 use std::path::PathBuf;
@@ -114,7 +113,7 @@ fn first_bytes(file: &mut File, shown: &str) -> Result<Vec<u8>, Failure> {
 /// who writes the diff into a student's folder must not write through the student's
 /// link, nor create the file it points at. `-o`, for the user's own files, follows links.
 fn diff_target(path: &std::path::Path) -> Result<(), Failure> {
-    let shown = escaped(&path.display().to_string());
+    let shown = files::shown(path);
     let refuse = |what: &str| {
         Err(Failure::other(format!(
             "--diff {shown} is {what}: the diff image is written only to a new or regular file"
@@ -141,7 +140,7 @@ fn run_inner(args: &CompareArgs) -> Result<bool, Failure> {
         // `--diff mine.ppm`, or a hard link to it, would replace the image being graded.
         return Err(Failure::other(format!(
             "--diff {} names a file being compared; give the diff image another name",
-            escaped(&diff.display().to_string())
+            files::shown(diff)
         )));
     }
     if let Some(diff) = &args.diff {
@@ -149,8 +148,8 @@ fn run_inner(args: &CompareArgs) -> Result<bool, Failure> {
     }
     let diff = output_file(args.diff.as_deref())?;
     args.how.check()?;
-    let shown = escaped(&args.reference.display().to_string());
-    let student_shown = escaped(&args.student.display().to_string());
+    let shown = files::shown(&args.reference);
+    let student_shown = files::shown(&args.student);
     let mut first = open_regular(&args.reference)?;
     let is_scene = content(&first_bytes(&mut first, &shown)?) == Content::Text;
     let student = read_image(&args.student, "student's image", args.max_pixels)?;

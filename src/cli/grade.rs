@@ -6,6 +6,7 @@
 use super::{Closeness, Failure, HowArgs, max_pixels, pixels, threads};
 use legacy_rt::compare::read::DEFAULT_MAX_PIXELS;
 use legacy_rt::error::escaped;
+use legacy_rt::files;
 use legacy_rt::grade::{self, Grades, Hooks, Plan, Progress};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
@@ -193,6 +194,6 @@ fn summary(grades: &Grades, folder: &Path) {
             .map(|s| format!(", part {s}"))
             .unwrap_or_default(),
         counts.join(", "),
-        escaped(&folder.join("index.html").display().to_string())
+        files::shown(&folder.join("index.html"))
     ));
 }

@@ -4,6 +4,7 @@
 use super::io::{emit_to_stdout, read_scene, stdin_name};
 use super::render::{render_with_progress, write_image};
 use super::{Failure, HowArgs, output_file, pixels, size};
+use legacy_rt::files;
 use legacy_rt::files::open_regular;
 use std::path::{Path, PathBuf};
 
@@ -159,7 +160,7 @@ fn stream(file: std::fs::File) -> std::io::BufReader<std::fs::File> {
 
 /// The message of a file that cannot be read against the reference.
 fn unreadable(path: &Path, unreadable: legacy_rt::against::Unreadable) -> Failure {
-    let shown = legacy_rt::error::escaped(&path.display().to_string());
+    let shown = files::shown(path);
     Failure::other(unreadable.about(&shown))
 }
 
@@ -173,7 +174,7 @@ fn against(
     file: std::fs::File,
     json: bool,
 ) -> Result<(String, bool), Failure> {
-    let shown = legacy_rt::error::escaped(&path.display().to_string());
+    let shown = files::shown(path);
     legacy_rt::render::tracing(scene, options, |frame| {
         let (report, trace) = legacy_rt::against::against(scene, frame, pixel, stream(file))
             .map_err(|error| unreadable(path, error))?;
@@ -199,12 +200,12 @@ fn whole(
     file: std::fs::File,
     json: bool,
 ) -> Result<(), Failure> {
-    let shown = legacy_rt::error::escaped(&path.display().to_string());
+    let shown = files::shown(path);
     let report = legacy_rt::render::tracing(scene, options, |frame| {
         legacy_rt::against::whole(scene, frame, stream(file))
     })
     .map_err(|error| {
-        let shown = legacy_rt::error::escaped(&path.display().to_string());
+        let shown = files::shown(path);
         Failure::other(format!(
             "{} (with --against, two numbers are the image's size W H, here {}x{}; to read \
              one pixel, give X Y W H)",

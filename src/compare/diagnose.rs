@@ -25,6 +25,7 @@
 
 use super::Reach;
 use super::{Reference, within};
+use crate::render::trace::object_name;
 use crate::render::variant::{Needs, Row, Scope, output_row};
 use crate::render::{self, Image, Kind, Options, VARIANTS, Variant};
 use crate::scene::{Material, Object, Pattern, Scene};
@@ -1059,10 +1060,9 @@ fn focus(scene: &Scene, paths: &[super::Involved], agreeing: &[super::Involved])
     if n == 0 {
         return None;
     }
-    let object = &scene.objects[index];
     let share = |k: usize| k as f64 / n as f64;
     Some(Focus {
-        object: format!("{} (line {})", object.kind(), object.line),
+        object: object_name(scene, index),
         index,
         share: n as f64 / paths.len().max(1) as f64,
         camera: share(camera),
@@ -1088,7 +1088,7 @@ fn light_focus(
         .filter(|&(_, d, a)| d >= LIGHT_DIFFERING && a <= LIGHT_AGREEING)
         .max_by(|x, y| (x.1 - x.2).total_cmp(&(y.1 - y.2)))
         .map(|(index, differing, agreeing)| LightFocus {
-            light: format!("light (line {})", scene.lights[index].line),
+            light: super::light_name(scene, index),
             index,
             differing,
             agreeing,

@@ -16,8 +16,9 @@
 
 use super::causes::{BREAKS_PER_FIX, Case, HALF};
 use super::retrace::{recorded, render_forced_each};
-use super::{for_each_set, pixel_at, within};
+use super::{for_each_set, light_name, pixel_at, within};
 use crate::render::record::{Event, LightStep, Recorder};
+use crate::render::trace::object_name;
 use crate::render::{Override, Rays, Variant};
 use crate::scene::Scene;
 use crate::shapes::{HitNote, Verdict};
@@ -576,17 +577,6 @@ fn shared_geometry(
         .into_iter()
         .max_by_key(|&(g, n)| (n, std::cmp::Reverse(g)))?;
     (n as f64 >= CONDITION_SHARE * members.len() as f64).then_some((geometry, n))
-}
-
-/// "cylinder (line 11)".
-fn object_name(scene: &Scene, object: usize) -> String {
-    let object = &scene.objects[object];
-    format!("{} (line {})", object.kind(), object.line)
-}
-
-/// "light (line 19)".
-fn light_name(scene: &Scene, light: usize) -> String {
-    format!("light (line {})", scene.lights[light].line)
 }
 
 /// The decisions as the student's program takes them, in words; an object's misses by

@@ -30,7 +30,7 @@ pub use diagnose::{
 pub use read::{ReadError, read_image};
 
 use crate::render::variant::output_row;
-use crate::render::{Image, Options};
+use crate::render::{Image, Options, Variant};
 use crate::scene::Scene;
 use serde::Serialize;
 

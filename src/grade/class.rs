@@ -2,7 +2,7 @@
 //! scene, and what else lies there.
 
 use super::GradeError;
-use crate::error::escaped;
+use crate::files;
 use std::fs;
 use std::path::{Path, PathBuf};
 
@@ -75,7 +75,7 @@ type Entry = (String, PathBuf, bool);
 /// The entries of a folder, sorted by name, hidden ones (`.name`) left out; each with
 /// whether it is a symbolic link (told without following it).
 fn entries(folder: &Path, what: &str) -> Result<Vec<Entry>, GradeError> {
-    let shown = escaped(&folder.display().to_string());
+    let shown = files::shown(folder);
     let cannot =
         |error: std::io::Error| GradeError::Failed(format!("cannot read {what} {shown}: {error}"));
     let mut found = Vec::new();
@@ -115,7 +115,7 @@ pub fn find(scenes: &Path, submissions: &Path) -> Result<Class, GradeError> {
     if scene_files.is_empty() {
         return Err(GradeError::Failed(format!(
             "{} holds no scene file (NAME.txt)",
-            escaped(&scenes.display().to_string())
+            files::shown(scenes)
         )));
     }
     let is_image_of_a_scene = |name: &str| {
@@ -158,7 +158,7 @@ pub fn find(scenes: &Path, submissions: &Path) -> Result<Class, GradeError> {
     if students.is_empty() {
         return Err(GradeError::Failed(format!(
             "{} holds no student's folder and no image named after a scene",
-            escaped(&submissions.display().to_string())
+            files::shown(submissions)
         )));
     }
     Ok(Class {

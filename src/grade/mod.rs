@@ -245,13 +245,7 @@ pub fn grade(
     plan: &Plan,
     hooks: &Hooks,
 ) -> Result<Grades, GradeError> {
-    let scenes_path = scenes.to_path_buf();
-    let submissions_path = submissions.to_path_buf();
-    let report = write::Folder::check(
-        report_folder,
-        &[&scenes_path, &submissions_path],
-        hooks.temporary,
-    )?;
+    let report = write::Folder::check(report_folder, &[scenes, submissions], hooks.temporary)?;
     let scheme = match scheme {
         Some(path) => scheme::read(path)?,
         None => scheme::Scheme::default(),
@@ -261,7 +255,7 @@ pub fn grade(
     if gradescope.is_some() && class.students.len() != 1 {
         return Err(GradeError::Usage(format!(
             "--gradescope writes one student's results, and {} holds {} students' folders",
-            escaped(&submissions.display().to_string()),
+            files::shown(submissions),
             class.students.len()
         )));
     }
@@ -415,13 +409,12 @@ impl Grader<'_> {
             Submitted::Link(path) => {
                 row.verdict = "unreadable".into();
                 row.file = Some(path.display().to_string());
-                let target = std::fs::read_link(path).map_or(String::new(), |to| {
-                    format!(" to {}", escaped(&to.display().to_string()))
-                });
+                let target = std::fs::read_link(path)
+                    .map_or(String::new(), |to| format!(" to {}", files::shown(&to)));
                 row.message = Some(format!(
                     "{} is a symbolic link{target}, not followed: a student's file must be the \
                      file itself",
-                    escaped(&path.display().to_string())
+                    files::shown(path)
                 ));
                 return Ok(row);
             }
@@ -450,7 +443,7 @@ impl Grader<'_> {
         (row.width, row.height) = (Some(image.width), Some(image.height));
         let required = plan.size.or(self.plan.size);
         let scene_shown = scene.path.display().to_string();
-        let student_shown = escaped(&path.display().to_string());
+        let student_shown = files::shown(path);
         let choices = &self.plan.choices;
         let shared;
         let (report, reference) = match required {
@@ -539,7 +532,7 @@ impl Grader<'_> {
 /// `grade --merge PART... -o REPORT`: the parts' grades.json joined into the report
 /// folder `report_folder`, their images copied.
 pub fn merge(paths: &[PathBuf], report_folder: &Path, hooks: &Hooks) -> Result<Grades, GradeError> {
-    let parts: Vec<&PathBuf> = paths.iter().collect();
+    let parts: Vec<&Path> = paths.iter().map(PathBuf::as_path).collect();
     let report = write::Folder::check(report_folder, &parts, hooks.temporary)?;
     let read: Vec<Grades> = (paths.iter())
         .map(|part| write::read_grades(part))
@@ -548,7 +541,7 @@ pub fn merge(paths: &[PathBuf], report_folder: &Path, hooks: &Hooks) -> Result<G
     let mut merged: Option<Grades> = None;
     let mut seen = HashMap::new();
     for (part, grades) in paths.iter().zip(read) {
-        let shown = escaped(&part.display().to_string());
+        let shown = files::shown(part);
         let whole = merged.get_or_insert_with(|| Grades {
             rows: Vec::new(),
             shard: None,
@@ -568,7 +561,7 @@ pub fn merge(paths: &[PathBuf], report_folder: &Path, hooks: &Hooks) -> Result<G
             if let Some(first) = seen.insert(key, part.clone()) {
                 return Err(GradeError::Failed(format!(
                     "{} and {shown} both grade {}'s {}: give each part once",
-                    escaped(&first.display().to_string()),
+                    files::shown(&first),
                     escaped(&row.student),
                     escaped(&row.scene)
                 )));

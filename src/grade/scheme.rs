@@ -12,6 +12,7 @@
 use super::GradeError;
 use super::class::SceneFile;
 use crate::error::escaped;
+use crate::files;
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -118,7 +119,7 @@ impl Scheme {
 
 /// Reads the scheme file at `path`.
 pub fn read(path: &Path) -> Result<Scheme, GradeError> {
-    let shown = escaped(&path.display().to_string());
+    let shown = files::shown(path);
     let bytes = crate::files::read_file(path, MAX_SCHEME)?;
     let text = String::from_utf8(bytes)
         .map_err(|_| GradeError::Failed(format!("--scheme {shown} is not UTF-8 text")))?;

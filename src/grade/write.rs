@@ -5,6 +5,7 @@
 use super::{GradeError, Grades, Images, Row, html};
 use crate::compare::{self, Reference};
 use crate::error::escaped;
+use crate::files;
 use crate::files::{MAX_INPUT, read_file};
 use crate::image_output::file::Temporary;
 use crate::{Image, image_output};
@@ -27,10 +28,7 @@ pub struct Folder {
 
 /// A failure to write under the report folder.
 fn cannot_write(path: &Path, error: impl std::fmt::Display) -> GradeError {
-    GradeError::Failed(format!(
-        "cannot write {}: {error}",
-        escaped(&path.display().to_string())
-    ))
+    GradeError::Failed(format!("cannot write {}: {error}", files::shown(path)))
 }
 
 /// Writes `bytes` to `path` whole ([`image_output::file::replace`]), `temporary` told of
@@ -102,7 +100,7 @@ fn thumbnail(image: &Image) -> Result<Vec<u8>, String> {
 /// Fails unless `path` can be written as a file: the Gradescope file's path, checked
 /// before grading.
 pub fn check_file(path: &Path) -> Result<PathBuf, GradeError> {
-    let shown = escaped(&path.display().to_string());
+    let shown = files::shown(path);
     if path.is_dir() {
         return Err(GradeError::Failed(format!(
             "{shown} is a folder, not a file"
@@ -123,10 +121,10 @@ impl Folder {
     /// whose files it would otherwise be graded with or write over.
     pub fn check(
         root: &Path,
-        inputs: &[&PathBuf],
+        inputs: &[&Path],
         temporary: fn(&Path, Temporary),
     ) -> Result<Folder, GradeError> {
-        let shown = escaped(&root.display().to_string());
+        let shown = files::shown(root);
         let refuse = |why: String| GradeError::Failed(format!("-o {shown}: {why}"));
         let at = resolved(root);
         for input in inputs {
@@ -134,7 +132,7 @@ impl Folder {
             if at.starts_with(&input_at) || input_at.starts_with(&at) {
                 return Err(refuse(format!(
                     "the report folder must be outside {} and not hold it",
-                    escaped(&input.display().to_string())
+                    files::shown(input)
                 )));
             }
         }
@@ -252,7 +250,7 @@ impl Folder {
             if !inside || !relative.starts_with("images/") {
                 return Err(GradeError::Failed(format!(
                     "{} names an image outside its images/: {}",
-                    escaped(&part.join("grades.json").display().to_string()),
+                    files::shown(&part.join("grades.json")),
                     escaped(relative)
                 )));
             }
@@ -337,7 +335,7 @@ fn within(part: &Path, relative: &str) -> Result<PathBuf, GradeError> {
             return Err(GradeError::Failed(format!(
                 "{} is a symbolic link: a part's report is read only from its own \
                      files, never through a link",
-                escaped(&path.display().to_string())
+                files::shown(&path)
             )));
         }
     }
@@ -351,7 +349,7 @@ pub fn read_grades(part: &Path) -> Result<Grades, GradeError> {
     serde_json::from_slice(&bytes).map_err(|error| {
         GradeError::Failed(format!(
             "{} is not a report of legacy-rt grade: {error}",
-            escaped(&path.display().to_string())
+            files::shown(&path)
         ))
     })
 }

@@ -769,14 +769,14 @@ fn set_option(options: &mut Options, variant: Variant) {
 }
 
 /// What the field that option variant `kind` sets already holds in `options`, where it is
-/// not the default render's: `max-dist=70`, or the kernel's name (`stable` has no variant).
+/// not the default render's: the variant that set it (`max-dist=70`), or the kernel's
+/// name where no variant names it (`stable`).
 fn option_taken(options: &Options, kind: Kind) -> Option<String> {
-    match kind {
-        Kind::MaxDist => {
-            (options.max_dist != DEFAULT_MAX_DIST).then(|| format!("max-dist={}", options.max_dist))
-        }
-        _ => (options.kernel != KernelChoice::Accurate).then(|| options.kernel.name().into()),
-    }
+    let group = kind.row().group;
+    let held = option_variants(options).find(|v| v.row().group == group);
+    let kernel = options.kernel != KernelChoice::Accurate && group == Kind::Textbook.row().group;
+    held.map(Variant::id)
+        .or_else(|| kernel.then(|| options.kernel.name().into()))
 }
 
 /// The option variants that `options` hold: each field that differs from the default

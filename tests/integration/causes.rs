@@ -581,8 +581,7 @@ fn an_independent_tracer_s_images_of_course_scenes_are_diagnosed_right() {
     let cases: Vec<(&str, &PathBuf, Mistakes, Vec<&str>)> = vec![
         // The tiny tracer's sphere root is the notes' (-b - sqrt(b² - 4ac)) / 2a in f64:
         // with the rows put back, most of what still differs is where that formula and
-        // the shipped kernel part (146 pixels from the shipped kernel's image, 20 from
-        // --kernel textbook's), and the diagnosis says so.
+        // the shipped kernel part, and the diagnosis says so (checked below).
         (
             "a02-row",
             &a02,
@@ -615,6 +614,18 @@ fn an_independent_tracer_s_images_of_course_scenes_are_diagnosed_right() {
         ),
     ];
     diagnosed_as_drawn(&dir, cases);
+    // What makes `textbook` true of a02's image: it is nearer the program's image with
+    // the notes' formula than with the shipped kernel, both with the row offset.
+    let (_, _, drawn) = read_ppm(&dir.join("a02-row.ppm"));
+    let apart = |kernel: &str| {
+        let out = dir.join(format!("a02-row-{kernel}.ppm"));
+        let args = ["--kernel", kernel, "--variant", "row-offset=1"];
+        render(&a02, SIZE, &args, &out);
+        let (_, _, pixels) = read_ppm(&out);
+        pixels.iter().zip(&drawn).filter(|(a, b)| a != b).count()
+    };
+    let (textbook, accurate) = (apart("textbook"), apart("accurate"));
+    assert!(textbook * 2 < accurate, "{textbook} vs {accurate}");
 }
 
 /// examples/tube.txt with a second light on the tube's other side: the floor inside the
