@@ -42,6 +42,11 @@ pub struct Cause {
     /// A pixel it explains (x, y from the lower left, as `trace` takes them).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub pixel: Option<[usize; 2]>,
+    /// The whole-image causes listed before it that move the rays (in JSON their ids, as
+    /// `--variant` takes them): `pixel` is traced with them, so that the command traces
+    /// the ray the student's pixel shows.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub under: Vec<Variant>,
     /// The command that traces `pixel` in the reference, when the command line knows the
     /// scene's file name.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -66,6 +71,7 @@ impl Cause {
             breaks,
             subject: None,
             pixel,
+            under: Vec::new(),
             trace: None,
         }
     }
@@ -285,21 +291,37 @@ fn stated(found: &[Diagnosis], differing: usize) -> Vec<Cause> {
     };
     let counts = |d: &Diagnosis| Some((d.explains?, d.breaks?));
     let found_alone = |variants: &[Variant]| found.iter().find(|d| d.variants == variants);
-    let cause = |variants: &[Variant], explains: usize, of: usize, breaks: usize| Cause {
-        id: ids(variants),
-        subject: found_alone(variants).and_then(|d| d.subject.clone()),
-        // Its own pixel where it was rendered alone, else the pair's.
-        pixel: found_alone(variants).and_then(|d| d.pixel).or(best.pixel),
-        trace: None,
-        variants: variants.to_vec(),
-        about: variants
-            .iter()
-            .map(|v| v.describe())
-            .collect::<Vec<_>>()
-            .join("; "),
-        explains,
-        of,
-        breaks,
+    // Which whole-image variants move the rays (a row off, the image upside down).
+    let moving = |v: &[Variant]| v.iter().all(|v| v.kind.row().site == Site::Camera);
+    // A cause, with the pixel that shows it: where it was rendered alone, its own, except
+    // for the pair's partner, whose pixel is the pair's (one the first alone leaves); and
+    // the partner listed after a first that moves the rays is traced under it.
+    let cause = |variants: &[Variant], (explains, of, breaks), before: &[Variant]| {
+        let partner = best.variants.len() == 2 && variants == &best.variants[1..];
+        let pixel = match partner {
+            true => best.pixel,
+            false => found_alone(variants).and_then(|d| d.pixel).or(best.pixel),
+        };
+        let under = match partner && before == &best.variants[..1] && moving(before) {
+            true => before.to_vec(),
+            false => Vec::new(),
+        };
+        Cause {
+            id: ids(variants),
+            subject: found_alone(variants).and_then(|d| d.subject.clone()),
+            pixel,
+            under,
+            trace: None,
+            variants: variants.to_vec(),
+            about: variants
+                .iter()
+                .map(|v| v.describe())
+                .collect::<Vec<_>>()
+                .join("; "),
+            explains,
+            of,
+            breaks,
+        }
     };
     let alone = |variants: &[Variant]| found_alone(variants).and_then(counts);
     // The first cause: of a pair, a whole image's (the camera's or the bytes') before a
@@ -311,7 +333,7 @@ fn stated(found: &[Diagnosis], differing: usize) -> Vec<Cause> {
     let Some((fixed, broken)) = alone(order[0]) else {
         return Vec::new();
     };
-    let first = cause(order[0], fixed, differing, broken);
+    let first = cause(order[0], (fixed, differing, broken), &[]);
     let [_, second] = order[..] else {
         return match supported(fixed, differing, broken) {
             true => vec![first],
@@ -322,7 +344,8 @@ fn stated(found: &[Diagnosis], differing: usize) -> Vec<Cause> {
         return Vec::new();
     };
     let (explains, of) = (both.saturating_sub(fixed), differing - fixed);
-    let second_cause = cause(second, explains, of, both_broken.saturating_sub(broken));
+    let counts_second = (explains, of, both_broken.saturating_sub(broken));
+    let second_cause = cause(second, counts_second, order[0]);
     let second_supported = supported(explains, of, second_cause.breaks);
     if supported(fixed, differing, broken) {
         return match second_supported {
@@ -345,12 +368,15 @@ fn stated(found: &[Diagnosis], differing: usize) -> Vec<Cause> {
         false => [(order[0], (fixed, broken)), (second, (other, other_broken))],
     };
     vec![
-        cause(a, a_alone.0, differing, a_alone.1),
+        cause(a, (a_alone.0, differing, a_alone.1), &[]),
         cause(
             b,
-            both.saturating_sub(a_alone.0),
-            differing - a_alone.0,
-            both_broken.saturating_sub(a_alone.1),
+            (
+                both.saturating_sub(a_alone.0),
+                differing - a_alone.0,
+                both_broken.saturating_sub(a_alone.1),
+            ),
+            a,
         ),
     ]
 }

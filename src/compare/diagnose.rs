@@ -453,15 +453,25 @@ pub(crate) fn with_mask(
         let mut estimated = found.iter().map(|t| t.variants[0]);
         let max_dist = estimated.rfind(|v| v.kind == Kind::MaxDist);
         let partners = candidates.iter().copied().chain(max_dist);
-        let mut pairs: Vec<(Vec<Variant>, f64)> = partners
-            .filter(|&partner| partner.id() != first.id())
-            .filter_map(|partner| {
-                Some((vec![first, partner], estimate_on(0, &[first, partner])?.0))
-            })
-            .collect();
-        shortlist(&mut pairs);
-        let pairs = (pairs.into_iter()).filter_map(|(pair, _)| Some((pair[1], estimate(&pair)?)));
-        let top = pairs.max_by(|a, b| a.1.0.total_cmp(&b.1.0).then(std::cmp::Ordering::Greater));
+        let partners: Vec<Variant> = partners.filter(|p| p.id() != first.id()).collect();
+        // Under a first that only moves the pixels (a row off, upside down), the partner
+        // is looked for on the pixels it leaves, where the samples of every differing
+        // pixel would hold a handful: it is scored exactly among those that fix most of
+        // them.
+        let top = match scorer.left(first) {
+            Some(left) => scorer.best_partner(first, partners, &left),
+            None => {
+                let mut pairs: Vec<(Vec<Variant>, f64)> = (partners.into_iter())
+                    .filter_map(|partner| {
+                        Some((vec![first, partner], estimate_on(0, &[first, partner])?.0))
+                    })
+                    .collect();
+                shortlist(&mut pairs);
+                let pairs =
+                    (pairs.into_iter()).filter_map(|(pair, _)| Some((pair[1], estimate(&pair)?)));
+                pairs.max_by(|a, b| a.1.0.total_cmp(&b.1.0).then(std::cmp::Ordering::Greater))
+            }
+        };
         if let Some((partner, (estimated, fixed))) = top
             && estimated > best.agreement
             && let Some((agreement, counts)) = exact(&[first, partner])
@@ -766,6 +776,96 @@ impl Scorer<'_> {
 }
 
 impl Scorer<'_> {
+    /// The pixels that `first`, a variant that only moves the pixels (a row off, upside
+    /// down), leaves differing, and those that agree under it (past an offset's uncovered
+    /// edge, neither), each in order; `None` for any other variant.
+    fn left(&self, first: Variant) -> Option<[Vec<usize>; 2]> {
+        if !SHIFTS.contains(&first.kind) {
+            return None;
+        }
+        let options = self.options.with_variant(first).ok()?;
+        let first = [first];
+        let (image, edge) = self.shifted(&first, &options)?;
+        let uncovered = uncovered(&first, options.width, options.height);
+        let agrees = |i: usize, b: [u8; 3]| within(b, self.student.pixels[i], self.levels);
+        let mut edge = edge.into_iter();
+        let [mut left, mut kept] = [Vec::new(), Vec::new()];
+        for (i, b) in image.into_iter().enumerate() {
+            let agrees_now = match b {
+                Some(b) => agrees(i, b),
+                None if uncovered(i) => continue,
+                None => edge.next().is_some_and(|b| agrees(i, b)),
+            };
+            match agrees_now {
+                true => kept.push(i),
+                false => left.push(i),
+            }
+        }
+        Some([left, kept])
+    }
+
+    /// Of `partners` (and the variants of one record that the rays of the pixels `left`
+    /// meet, traced under `first`), the one that with `first` is estimated to agree
+    /// best: on even samples of the pixels `first` leaves differing and of those that
+    /// agree under it (`left`), each candidate on the small ones and the [`SHORTLIST`]
+    /// best again on the large. With the agreement estimated and the pixels of the
+    /// large sample it fixes.
+    fn best_partner(
+        &self,
+        first: Variant,
+        mut partners: Vec<Variant>,
+        [left, kept]: &[Vec<usize>; 2],
+    ) -> Option<(Variant, (f64, Vec<usize>))> {
+        let (scene, options) = (self.scene, self.options);
+        let moved = options.with_variant(first).ok()?;
+        let samples = SAMPLE.map(|n| {
+            let every = |of: &[usize]| -> Vec<usize> {
+                let step = of.len().div_ceil(n).max(1);
+                of.iter().step_by(step).copied().collect()
+            };
+            [every(left), every(kept)]
+        });
+        if left.is_empty() {
+            return None;
+        }
+        for v in scoped(scene, &super::involved(scene, &moved, &samples[1][0])) {
+            if !partners.contains(&v) && may_change(scene, options, &v) {
+                partners.push(v);
+            }
+        }
+        let agrees = |i: usize, b: [u8; 3]| within(b, self.student.pixels[i], self.levels);
+        let share = |n: usize, of: &[usize]| n as f64 / of.len().max(1) as f64;
+        let total = (self.rendered.image.pixels.len()).max(1) as f64;
+        // The agreement estimated on sample k, and the pixels it fixes there.
+        let estimate = |k: usize, partner: Variant| -> Option<(f64, Vec<usize>)> {
+            let [sample_left, sample_kept] = &samples[k];
+            let both = moved.with_variant(partner).ok()?;
+            let sample: Vec<usize> = sample_left.iter().chain(sample_kept).copied().collect();
+            let bytes = super::render_pixels(scene, &both, &sample);
+            let (on_left, on_kept) = bytes.split_at(sample_left.len());
+            let fixed: Vec<usize> = (sample_left.iter().zip(on_left))
+                .filter(|&(&i, &b)| agrees(i, b))
+                .map(|(&i, _)| i)
+                .collect();
+            let still = (sample_kept.iter().zip(on_kept))
+                .filter(|&(&i, &b)| agrees(i, b))
+                .count();
+            // The pixels estimated to differ under both (an offset's uncovered edge, none).
+            let differing = left.len() as f64 * (1.0 - share(fixed.len(), sample_left))
+                + kept.len() as f64 * (1.0 - share(still, sample_kept));
+            (!fixed.is_empty()).then_some(((total - differing) / total, fixed))
+        };
+        let mut first_round: Vec<(Variant, f64)> = (partners.into_iter())
+            .filter_map(|partner| Some((partner, estimate(0, partner)?.0)))
+            .collect();
+        // Best first; a stable sort keeps the candidates' order among equals.
+        first_round.sort_by(|a, b| b.1.total_cmp(&a.1));
+        first_round.truncate(SHORTLIST);
+        (first_round.into_iter())
+            .filter_map(|(partner, _)| Some((partner, estimate(1, partner)?)))
+            .max_by(|a, b| a.1.0.total_cmp(&b.1.0).then(std::cmp::Ordering::Greater))
+    }
+
     /// The image under `variants` (at `options`) where those among them that move pixels
     /// only shift them (rows and columns off, upside down) and the others reach few
     /// pixels: each pixel the reference's from where its ray comes, under the others

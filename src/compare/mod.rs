@@ -246,8 +246,8 @@ pub(crate) fn light_name(scene: &Scene, light: usize) -> String {
 impl Report {
     /// Gives each pixel the report names (the worst, each diagnosis', each cause's, each
     /// decision flip's) the `trace` command that shows it: `command(x, y, under)`, where
-    /// `under` are the whole-image causes a decision flip was found under (a row off),
-    /// which its pixel is traced with.
+    /// `under` are the whole-image causes a cause or a decision flip was found under (a
+    /// row off), which its pixel is traced with.
     pub fn add_trace_commands(&mut self, command: impl Fn(usize, usize, &[Variant]) -> String) {
         for worst in &mut self.worst {
             worst.trace = Some(command(worst.x, worst.y, &[]));
@@ -256,7 +256,7 @@ impl Report {
             found.trace = found.pixel.map(|[x, y]| command(x, y, &[]));
         }
         for cause in self.causes.iter_mut().flatten() {
-            cause.trace = cause.pixel.map(|[x, y]| command(x, y, &[]));
+            cause.trace = cause.pixel.map(|[x, y]| command(x, y, &cause.under));
         }
         for flip in self.flips.iter_mut().flatten() {
             let [x, y] = flip.pixel;

@@ -715,10 +715,15 @@ fn a_decision_found_under_an_image_written_upside_down_is_traced_on_its_row() {
     let student = dir.join("upside-down-no-shadow.ppm");
     write_ppm(&student, size, &tiny_tracer(&text, size, mistakes));
     let (found, json) = causes(&scene, &student);
-    assert_eq!(
-        found.first().map(String::as_str),
-        Some("upside-down"),
-        "{json:#}"
+    assert_eq!(found, ["upside-down", "no-shadow@25"], "{json:#}");
+    // The catalogue's cause, traced the same way: its pixel's ray meets the sphere's
+    // shadow (before, the command named the unturned row, where nothing is blocked).
+    let command = json["causes"][1]["trace"].as_str().unwrap();
+    assert!(command.contains("--variant upside-down <"), "{command}");
+    let trace = traced(command);
+    assert!(
+        trace.contains("blocked by sphere (line 25)"),
+        "{command}\n{trace}"
     );
     let flips = json["flips"].as_array().unwrap();
     let decision = "sphere (line 25) does not block shadow rays";
