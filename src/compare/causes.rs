@@ -146,9 +146,13 @@ pub fn explain(
         student: &student,
         levels,
     };
-    let (found, focus, more) = scene_causes(case, mask);
+    let (found, mut focus, more) = scene_causes(case, mask);
     causes.extend(more);
     let flips = decision_flips(case, mask, &causes);
+    // Another colour of one object is what is left where no decision differs.
+    if let Some(focus) = focus.as_mut().filter(|_| !flips.is_empty()) {
+        focus.material = None;
+    }
     (found, focus, causes, flips)
 }
 

@@ -110,6 +110,13 @@ pub struct Focus {
     /// The light whose term the differences follow, where one does.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub light: Option<LightFocus>,
+    /// Where no light's term is followed, nearly every differing pixel's camera ray hits
+    /// the object, most of the pixels whose camera or mirror rays hit it differ, and each
+    /// channel differs one way on them (lighter, or darker), and no decision flip
+    /// explains the differences: the share of those that differ, as when its colour is
+    /// computed otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub material: Option<f64>,
 }
 
 /// A light whose term the differences follow: it lights nearly every (sampled) differing
@@ -133,6 +140,17 @@ const LIGHT_DIFFERING: f64 = 0.9;
 
 /// The share of the agreeing pixels it may light, at most.
 const LIGHT_AGREEING: f64 = 0.5;
+
+/// The share of the differing pixels whose camera ray must hit one object for the
+/// differences to follow its colour, at least.
+const MATERIAL_CAMERA: f64 = 0.9;
+
+/// The share of the pixels whose rays hit it that must differ, at least: far more than
+/// an edge moved by a pixel changes.
+const MATERIAL_DIFFERING: f64 = 0.5;
+
+/// The share of the pixels where a channel differs that must differ the same way.
+const MATERIAL_ONE_WAY: f64 = 0.95;
 
 /// What one candidate scored.
 #[derive(Clone)]
@@ -232,6 +250,7 @@ pub(crate) fn with_mask(
     // those pixels are traced again, the others keep the reference's bytes (under its
     // byte rule). `None`: any pixel.
     let paths = &rendered.paths;
+    let paths_of_all = paths;
     let given: Vec<Variant> = options.variants.iter().collect();
     let reach = |variants: &[Variant]| match paths.len() == pixels {
         true => Reach::of(scene, &given, variants),
@@ -294,7 +313,39 @@ pub(crate) fn with_mask(
     let (sample, split) = &samples[1];
     let paths = super::involved(scene, options, &sample[..*split]);
     let agreeing_paths = super::involved(scene, options, &sample[*split..]);
-    let focus = focus(scene, &paths, &agreeing_paths);
+    // How each sampled differing pixel's channels differ: the student's less the
+    // reference's.
+    let moved: Vec<[i16; 3]> = (sample[..*split].iter())
+        .map(|&i| {
+            let (r, s) = (reference.pixels[i], student.pixels[i]);
+            [0, 1, 2].map(|c| i16::from(s[c]) - i16::from(r[c]))
+        })
+        .collect();
+    // The share of the pixels whose camera or mirror rays hit an object that differ:
+    // counted on the reference's paths where it has them (every pixel, in one pass),
+    // else estimated from the samples.
+    let differing_where_hit = |object: usize| match paths_of_all.len() == pixels {
+        true => {
+            let (mut hit, mut differ) = (0usize, 0usize);
+            for (i, path) in paths_of_all.iter().enumerate() {
+                if path.may_hit(object) {
+                    hit += 1;
+                    differ += (mask[i / 64] >> (i % 64) & 1) as usize;
+                }
+            }
+            differ as f64 / hit.max(1) as f64
+        }
+        false => {
+            let seen = |paths: &[super::Involved], count: usize| {
+                let hit = paths.iter().filter(|p| p.hits.contains(&object)).count();
+                count as f64 * hit as f64 / paths.len().max(1) as f64
+            };
+            let (d, a) = (seen(&paths, differing), seen(&agreeing_paths, agreeing));
+            d / (d + a).max(1.0)
+        }
+    };
+    let sampled = [&paths[..], &agreeing_paths[..]];
+    let focus = focus(scene, sampled, &moved, &differing_where_hit);
     let held = options.all_variants();
     let mut candidates: Vec<Variant> = (Variant::tried()).filter(|v| !held.contains(v)).collect();
     candidates.extend(other_values());
@@ -1137,9 +1188,18 @@ fn distinct(of: impl Iterator<Item = usize>) -> Vec<usize> {
 /// The object most involved in the sampled differing pixels' paths, and how: each path
 /// counts once for an object, as the camera ray's hit first, else as a shadow's blocker,
 /// else as a mirror ray's hit.
-fn focus(scene: &Scene, paths: &[super::Involved], agreeing: &[super::Involved]) -> Option<Focus> {
+/// Of the sampled paths of the differing pixels and of the agreeing ones (`paths`), the
+/// object most involved in the differing: with the sampled differing pixels' channels
+/// moved by `moved`, and `differing_where_hit(object)` the share of the pixels whose rays
+/// hit an object that differ.
+fn focus(
+    scene: &Scene,
+    [paths, agreeing]: [&[super::Involved]; 2],
+    moved: &[[i16; 3]],
+    differing_where_hit: &dyn Fn(usize) -> f64,
+) -> Option<Focus> {
     // Per object: the paths that involve it, then by the camera, a shadow, a mirror.
-    let mut counts = vec![[0usize; 4]; scene.objects.len()];
+    let mut per_object = vec![[0usize; 4]; scene.objects.len()];
     for path in paths {
         let camera = path.hits.first().copied();
         let blockers: Vec<usize> = path.blockers.iter().map(|b| b.0).collect();
@@ -1151,16 +1211,40 @@ fn focus(scene: &Scene, paths: &[super::Involved], agreeing: &[super::Involved])
             } else {
                 3
             };
-            counts[object][0] += 1;
-            counts[object][how] += 1;
+            per_object[object][0] += 1;
+            per_object[object][how] += 1;
         }
     }
-    let index = (0..counts.len()).max_by_key(|&i| (counts[i][0], std::cmp::Reverse(i)))?;
-    let [n, camera, shadow, mirror] = counts[index];
+    let index = (0..per_object.len()).max_by_key(|&i| (per_object[i][0], std::cmp::Reverse(i)))?;
+    let [n, camera, shadow, mirror] = per_object[index];
     if n == 0 {
         return None;
     }
     let share = |k: usize| k as f64 / n as f64;
+    let light = light_focus(scene, paths, agreeing);
+    let hit = paths
+        .iter()
+        .filter(|p| p.hits.first() == Some(&index))
+        .count();
+    // Another colour moves each channel one way on every pixel; the object moved makes
+    // one side lighter and the other darker.
+    let on_it = (paths.iter().zip(moved)).filter(|(p, _)| p.hits.first() == Some(&index));
+    let mut ways = [[0usize; 2]; 3];
+    for (_, moved) in on_it {
+        for c in 0..3 {
+            match moved[c].signum() {
+                1 => ways[c][0] += 1,
+                -1 => ways[c][1] += 1,
+                _ => {}
+            }
+        }
+    }
+    let one_way = ways
+        .iter()
+        .all(|&[up, down]| up.min(down) as f64 <= (1.0 - MATERIAL_ONE_WAY) * (up + down) as f64);
+    let material = (light.is_none() && hit as f64 >= MATERIAL_CAMERA * paths.len() as f64)
+        .then(|| differing_where_hit(index))
+        .filter(|&differ| differ >= MATERIAL_DIFFERING && one_way);
     Some(Focus {
         object: object_name(scene, index),
         index,
@@ -1168,7 +1252,8 @@ fn focus(scene: &Scene, paths: &[super::Involved], agreeing: &[super::Involved])
         camera: share(camera),
         shadow: share(shadow),
         mirror: share(mirror),
-        light: light_focus(scene, paths, agreeing),
+        light,
+        material,
     })
 }
 

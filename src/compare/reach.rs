@@ -74,6 +74,12 @@ impl Paths {
         self.0 |= LIGHTS.bit(light);
     }
 
+    /// Whether a camera or mirror ray may hit `object`: it did, or an object that shares
+    /// its bit did (never with 32 objects or fewer).
+    pub(crate) fn may_hit(self, object: usize) -> bool {
+        self.0 & HITS.bit(object) != 0
+    }
+
     /// Whether this path may take the decision `flip` forces the other way: it hits the
     /// object (by camera or mirror ray), or the object blocks one of its shadow rays, or
     /// the light's term is consulted.

@@ -366,6 +366,16 @@ pub fn diagnosis(report: &Report) -> Vec<String> {
                 percent_of(light.agreeing)
             ));
         }
+        if let Some(differ) = focus.material {
+            line(format!(
+                "no decision on their paths differs: the colour of {} is computed otherwise \
+                 ({} of the pixels where a ray hits it differ, each channel one way); \
+                 look at its ambient, diffuse and specular as your program reads them and at \
+                 how it computes its terms (spec §4.2)",
+                focus.object,
+                percent_of(differ)
+            ));
+        }
     }
     // The student's own program can say where it leaves the reference, number by
     // number: its DBG_ trace of a differing pixel, read with --against.

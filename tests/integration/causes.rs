@@ -211,23 +211,27 @@ fn edits_made_by_hand_are_named_by_their_record_never_by_an_unrelated_variant() 
     let dir = folder("causes-by-hand");
     let scene = example("shadows");
     // (name, the line as examples/shadows.txt has it, the edit, the object's line, the
-    // light's line the differences are said to follow).
+    // light's line the differences are said to follow, whether they follow the object's
+    // colour).
     let edits = [
-        // The red sphere (line 11) 0.05 to the right: two pixels at this size.
+        // The red sphere (line 11) 0.05 to the right: its shading moves, lighter on one
+        // side and darker on the other, which no other colour does.
         (
             "moved",
             "-2.4 -1.5 -5  centre",
             "-2.35 -1.5 -5  centre",
             Some(11),
             None,
+            false,
         ),
-        // The red sphere's diffuse colour.
+        // The red sphere's diffuse colour: its red darker wherever a light reaches it.
         (
             "diffuse",
             "4 0.8 0.8     ambient\n5 5 5",
             "4 0.8 0.8     ambient\n4 5 5",
             Some(11),
             None,
+            true,
         ),
         // The warm light (line 32) moved by half a unit: no edit of the catalogue is
         // its, but the differences follow its term.
@@ -237,9 +241,10 @@ fn edits_made_by_hand_are_named_by_their_record_never_by_an_unrelated_variant() 
             "-4.5 3 -2       location",
             None,
             Some(32),
+            false,
         ),
     ];
-    for (name, from, to, record, light) in edits {
+    for (name, from, to, record, light, colour) in edits {
         let student = dir.join(format!("{name}.ppm"));
         render(&edited(&dir, &scene, name, from, to), SIZE, &[], &student);
         let (found, json) = causes(&scene, &student);
@@ -251,6 +256,29 @@ fn edits_made_by_hand_are_named_by_their_record_never_by_an_unrelated_variant() 
         let followed = json["focus"]["light"]["light"].as_str();
         let expected = light.map(|line| format!("light (line {line})"));
         assert_eq!(followed, expected.as_deref(), "{name}: {json:#}");
+        let material = json["focus"]["material"].as_f64();
+        assert_eq!(material.is_some(), colour, "{name}: {json:#}");
+        // Its share, counted from the images: of the sphere's pixels (those that
+        // --variant hidden@11 changes), those that differ (where a light reaches it and
+        // its red does not clamp at 255).
+        if let Some(share) = material {
+            let (reference, hidden) = (dir.join("reference.ppm"), dir.join("hidden.ppm"));
+            render(&scene, SIZE, &[], &reference);
+            render(&scene, SIZE, &["--variant", "hidden@11"], &hidden);
+            let [reference, hidden, student] =
+                [reference, hidden, student.clone()].map(|p| read_ppm(&p).2);
+            let sphere = (0..reference.len()).filter(|&i| reference[i] != hidden[i]);
+            let differ = sphere
+                .clone()
+                .filter(|&i| reference[i] != student[i])
+                .count();
+            let counted = differ as f64 / sphere.count() as f64;
+            assert!(
+                (share - counted).abs() < 1e-9,
+                "{name}: {share} against {counted}"
+            );
+            assert!(counted > 0.5, "{counted}");
+        }
     }
     // The green sphere (line 18) deleted: every cause is an edit of its record.
     let text = std::fs::read_to_string(&scene).unwrap();
