@@ -149,9 +149,9 @@ pub fn explain(
     let (found, mut focus, more) = scene_causes(case, mask);
     causes.extend(more);
     let flips = decision_flips(case, mask, &causes);
-    // Another colour of one object is what is left where no decision differs.
+    // One light's term or one object's colour is what is left where no decision differs.
     if let Some(focus) = focus.as_mut().filter(|_| !flips.is_empty()) {
-        focus.material = None;
+        (focus.light, focus.material) = (None, None);
     }
     (found, focus, causes, flips)
 }

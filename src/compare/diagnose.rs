@@ -107,7 +107,8 @@ pub struct Focus {
     pub shadow: f64,
     /// See `camera`.
     pub mirror: f64,
-    /// The light whose term the differences follow, where one does.
+    /// The light whose term the differences follow, where one does and no decision flip
+    /// explains them.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub light: Option<LightFocus>,
     /// Where no light's term is followed, nearly every differing pixel's camera ray hits

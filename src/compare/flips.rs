@@ -17,6 +17,7 @@
 use super::causes::{BREAKS_PER_FIX, Case, HALF};
 use super::retrace::{recorded, render_forced_each};
 use super::{for_each_set, light_name, pixel_at, within};
+use crate::render::PatternNote;
 use crate::render::record::{Event, LightStep, Recorder};
 use crate::render::trace::object_name;
 use crate::render::{Override, Rays, Variant};
@@ -67,6 +68,10 @@ pub struct Flip {
     pub trace: Option<String>,
 }
 
+/// What spec §5.4 adds to a tile's coordinates before it truncates them: relx or rely
+/// below it is a negative coordinate in the plane.
+const TILE_ORIGIN: i64 = 10000;
+
 /// The most differing pixels examined; more are sampled evenly down to it.
 const EXAMINED: usize = 4096;
 
@@ -100,6 +105,9 @@ enum Geometry {
     BaseInside,
     /// The ray grazes the surface: the two roots nearly meet.
     Grazing,
+    /// A tiled plane's hit where one of its coordinates in the plane is negative: relx
+    /// or rely below the 10000 spec §5.4 adds, which truncation toward zero needs.
+    NegativeTile,
 }
 
 impl Geometry {
@@ -130,6 +138,9 @@ impl Geometry {
         match self {
             Geometry::BaseInside => "whose base is inside it (the nearer root is behind the base)",
             Geometry::Grazing => "that graze it (the two roots nearly meet)",
+            Geometry::NegativeTile => {
+                "where x or y in the plane is negative (relx or rely below 10000)"
+            }
         }
     }
 }
@@ -187,6 +198,15 @@ impl Recorder for Decisions {
                 let geometry = self.geometry(object);
                 self.take(Override::Miss { object, rays }, None, geometry);
             }
+            Event::Surface {
+                object,
+                pattern: PatternNote::Tile { relx, rely, .. },
+                ..
+            } => {
+                let negative = relx < TILE_ORIGIN || rely < TILE_ORIGIN;
+                let geometry = negative.then_some(Geometry::NegativeTile);
+                self.take(Override::Tile { object }, None, geometry);
+            }
             Event::Lamp { light } => self.light = Some(light),
             Event::Light(LightStep::ShadowRay { .. }) => self.tested.clear(),
             Event::Light(LightStep::Blocked { blocker }) => {
@@ -231,6 +251,7 @@ fn key(flip: &Override) -> Key {
     match *flip {
         Override::Miss { object, rays } => (rays as u8, object),
         Override::Shadow { light, blocked } => (3 + u8::from(blocked), light),
+        Override::Tile { object } => (5, object),
     }
 }
 
@@ -625,6 +646,10 @@ fn words(scene: &Scene, flips: &[Override]) -> String {
                 "shadow rays toward {} are blocked where nothing is in the way",
                 light_name(scene, light)
             )),
+            Override::Tile { object } => said.push(format!(
+                "{} takes the other tile's colour",
+                object_name(scene, object)
+            )),
         }
     }
     said.join(", and ")
@@ -664,11 +689,11 @@ fn advice(scene: &Scene, flips: &[Override], geometry: Option<Geometry>) -> Stri
                 Some(Geometry::Grazing) => {
                     format!("look at how your {kind} test treats a discriminant near 0")
                 }
-                None if rays == Rays::Shadow => format!(
+                _ if rays == Rays::Shadow => format!(
                     "look at how your shadow test tests a {kind}: whether it is skipped, and \
                      whether a hit at t > 0 closer than the light blocks"
                 ),
-                None => format!("look at your {kind} intersection test and its bounds"),
+                _ => format!("look at your {kind} intersection test and its bounds"),
             }
         }
         Override::Shadow {
@@ -684,6 +709,15 @@ fn advice(scene: &Scene, flips: &[Override], geometry: Option<Geometry>) -> Stri
              closer than the light)",
             light_name(scene, light)
         ),
+        Override::Tile { .. } if geometry == Some(Geometry::NegativeTile) => {
+            "look at how your program computes relx and rely: trunc(10000 + q.x/w) and \
+             trunc(10000 + q.y/h) (spec §5.4); without the 10000, truncation toward zero \
+             gives the tiles either side of 0 one number"
+                .to_string()
+        }
+        Override::Tile { .. } => "look at how your program chooses the tile's material: \
+             the foreground where relx + rely is odd (spec §5.4)"
+            .to_string(),
     }
 }
 

@@ -73,6 +73,13 @@ pub(crate) trait Query: Copy {
     fn shadow(self, _light: usize) -> Option<bool> {
         None
     }
+
+    /// Whether a hit on object `index`, a tiled plane, is forced to take the other
+    /// tile's material.
+    #[inline(always)]
+    fn other_tile(self, _index: usize) -> bool {
+        false
+    }
 }
 
 /// The answer alone, the quickest way: the tiles' lists and the hierarchy.
@@ -161,6 +168,11 @@ impl Query for Forced<'_> {
             _ => None,
         })
     }
+
+    #[inline]
+    fn other_tile(self, index: usize) -> bool {
+        (self.overrides.iter()).any(|o| *o == Override::Tile { object: index })
+    }
 }
 
 /// The rays a forced miss applies to ([`Override::Miss`]).
@@ -175,7 +187,8 @@ pub enum Rays {
 }
 
 /// One decision of the tracer forced the other way on every pixel, whatever the geometry
-/// says: an object missed by one kind of ray, or a light's shadow test decided.
+/// says: an object missed by one kind of ray, a light's shadow test decided, or a tiled
+/// plane's tile colour swapped.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Override {
     /// Object `object` (its index among the scene's objects) is missed by `rays`.
@@ -191,6 +204,11 @@ pub enum Override {
         light: usize,
         /// Whether the light is blocked.
         blocked: bool,
+    },
+    /// A hit on tiled plane `object` takes the other tile's material (spec §5.4).
+    Tile {
+        /// The plane's index among the scene's objects.
+        object: usize,
     },
 }
 

@@ -53,18 +53,20 @@ pub enum PatternNote {
     },
 }
 
-/// The object's material at `surface`, and what chose it.
+/// The object's material at `surface`, and what chose it; with `other_tile`, a tiled
+/// plane's other tile's (a decision forced the other way).
 #[inline(always)]
 pub(crate) fn material_and_pattern(
     object: &Object,
     surface: &Surface,
     screen: &Screen,
+    other_tile: bool,
 ) -> (Material, PatternNote) {
     match &object.look.pattern {
         Pattern::Plain => (object.look.material, PatternNote::Plain),
         Pattern::Tiles { tile, background } => {
             let (relx, rely) = tile_index(surface.plane_xy, *tile);
-            let foreground = is_foreground(relx, rely);
+            let foreground = is_foreground(relx, rely) != other_tile;
             let material = if foreground {
                 object.look.material
             } else {

@@ -272,7 +272,9 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
                 let rules = self.rules.object(object);
                 // 3. The path grows by the segment.
                 p.total_dist += t;
-                let (surface, material) = self.surface(object, rules, &p.ray, t, p.total_dist, rec);
+                let other_tile = query.other_tile(object);
+                let at = (object, rules, other_tile);
+                let (surface, material) = self.surface(at, &p.ray, t, p.total_dist, rec);
                 // 4. The ambient.
                 hits[lane] = Some(Lit {
                     object,
@@ -380,8 +382,7 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
     #[inline(always)]
     fn surface(
         &self,
-        object: usize,
-        rules: ObjectRules,
+        (object, rules, other_tile): (usize, ObjectRules, bool),
         ray: &Ray,
         t: f64,
         total_dist: f64,
@@ -395,7 +396,7 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
         if rules.has(Kind::FlippedNormal) {
             surface.normal = -surface.normal;
         }
-        let (material, pattern) = material_and_pattern(record, &surface, &self.screen);
+        let (material, pattern) = material_and_pattern(record, &surface, &self.screen, other_tile);
         rec.record(|| Event::Surface {
             object,
             t,

@@ -789,3 +789,68 @@ fn decision_flips_name_a_hidden_object_and_nothing_for_a_rule_of_the_colours() {
     let (_, json) = causes(&scene, &student);
     assert_eq!(json["flips"], serde_json::json!([]), "{json:#}");
 }
+
+/// examples/shadows.txt with its floor tiled (a 16 record): tiles a unit square along x
+/// and z, the foreground the floor's grey, the background a blue.
+fn tiled_floor(dir: &Path) -> PathBuf {
+    let text = std::fs::read_to_string(example("shadows")).unwrap();
+    let floor = "14            floor\n1.5 1.5 1.5   ambient\n5 5 5         diffuse\n\
+                 0 0 0         specular\n0 1 0         normal\n0 -3.5 0      point\n";
+    assert!(text.contains(floor));
+    let tiled = "16            floor, tiled\n1.5 1.5 1.5   ambient\n5 5 5         diffuse\n\
+                 0 0 0         specular\n0 1 0         normal\n0 -3.5 0      point\n\
+                 1 0 0         grid direction\n1 1           gridsize\n\
+                 0.3 0.3 1.5   ambient\n1 1 3         diffuse\n0 0 0         specular\n";
+    let path = dir.join("tiled.txt");
+    std::fs::write(&path, text.replacen(floor, tiled, 1)).unwrap();
+    path
+}
+
+#[test]
+fn tiles_numbered_without_spec_5_4_s_10000_are_one_group_of_decisions() {
+    let dir = folder("causes-flips-tiles");
+    let scene = tiled_floor(&dir);
+    let text = std::fs::read_to_string(&scene).unwrap();
+    let size = (SIZE.0 as usize, SIZE.1 as usize);
+    // Unbroken, the tiny tracer draws the reference.
+    let correct = dir.join("correct.ppm");
+    write_ppm(
+        &correct,
+        size,
+        &tiny_tracer(&text, size, Mistakes::default()),
+    );
+    let (code, json) = report(&[scene.to_str().unwrap(), correct.to_str().unwrap()]);
+    assert_eq!(
+        (code, &json["differing_pixels"]),
+        (0, &0.into()),
+        "{json:#}"
+    );
+    // Its tiles numbered trunc(q.x/w), trunc(q.y/h): where one of x and y in the plane is
+    // negative (the floor left of x = 0; its y, -z, is positive where the camera sees
+    // it), the tile takes the other colour, as no catalogue mistake does.
+    let student = dir.join("no-offset.ppm");
+    let mistakes = rule(|m| m.tile_no_offset = true);
+    write_ppm(&student, size, &tiny_tracer(&text, size, mistakes));
+    let (found, json) = causes(&scene, &student);
+    assert!(found.is_empty(), "{json:#}");
+    let flips = json["flips"].as_array().unwrap();
+    assert_eq!(flips.len(), 1, "{json:#}");
+    let flip = &flips[0];
+    assert_eq!(
+        flip["decision"],
+        "tiled plane (line 4) takes the other tile's colour"
+    );
+    assert_eq!(
+        flip["condition"],
+        "where x or y in the plane is negative (relx or rely below 10000)"
+    );
+    assert_eq!(flip["explains"], flip["of"], "{json:#}");
+    assert_eq!(flip["breaks"], 0, "{json:#}");
+    // Its pixel lies left of the centre, and its trace shows relx below 10000 there.
+    let [x, _] = [0, 1].map(|k| flip["pixel"][k].as_u64().unwrap());
+    assert!(x < SIZE.0 as u64 / 2, "{flip}");
+    let trace = traced(flip["trace"].as_str().unwrap());
+    let relx = (trace.split("tile relx ").nth(1))
+        .and_then(|rest| rest.split(',').next()?.parse::<i64>().ok());
+    assert!(relx.is_some_and(|relx| relx < 10000), "{trace}");
+}

@@ -791,10 +791,14 @@ pub(super) struct Mistakes {
     /// The world point (x + 0.5)/W·ww - ww/2, and the same for y, rather than spec §4.1's
     /// x/(W-1)·ww - ww/2.
     pub pixel_centre: bool,
+    /// A tile's numbers trunc(q.x/w) and trunc(q.y/h), without spec §5.4's 10000: the
+    /// tiles either side of 0 get one number.
+    pub tile_no_offset: bool,
 }
 
-/// A tiny tracer of spec §4, §5.1-§5.2 and §5.6's cylinder, written here for spheres,
-/// planes, cylinders whose centre line is +y, and point lights, without mirrors,
+/// A tiny tracer of spec §4, §5.1-§5.4 and §5.6's cylinder, written here for spheres,
+/// planes, tiled planes, cylinders whose centre line is +y, and point lights, without
+/// mirrors,
 /// independent of the program: the scene `text` at (w, h), with `mistakes`. Returns the
 /// pixels, top row first.
 pub(super) fn tiny_tracer(text: &str, (w, h): (usize, usize), mistakes: Mistakes) -> Vec<[u8; 3]> {
@@ -803,6 +807,13 @@ pub(super) fn tiny_tracer(text: &str, (w, h): (usize, usize), mistakes: Mistakes
     let dot = |a: V, b: V| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
     let scale = |a: V, k: f64| [a[0] * k, a[1] * k, a[2] * k];
     let unit = |a: V| scale(a, 1.0 / dot(a, a).sqrt());
+    let cross = |a: V, b: V| {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    };
     // The numbers of each line, in order: a line's leading numbers, then its comment.
     let numbers: Vec<f64> = (text.lines())
         .flat_map(|line| {
@@ -820,11 +831,13 @@ pub(super) fn tiny_tracer(text: &str, (w, h): (usize, usize), mistakes: Mistakes
     let triple = |v: Vec<f64>| [v[0], v[1], v[2]];
     let window = take(2);
     let eye = triple(take(3));
-    // (ambient, diffuse, shape): a sphere (centre, r), a plane (unit normal, point) or an
-    // upright cylinder (centre of base, r, height).
+    // (ambient, diffuse, shape): a sphere (centre, r), a plane (unit normal, point), a
+    // tiled plane (the plane, its frame's x and y, the tile's size, the background's
+    // ambient and diffuse) or an upright cylinder (centre of base, r, height).
     enum Shape {
         Sphere(V, f64),
         Plane(V, V),
+        Tiled(V, V, [V; 2], Vec<f64>, [V; 2]),
         Cylinder(V, f64, f64),
     }
     let mut objects: Vec<(V, V, Shape)> = Vec::new();
@@ -833,11 +846,21 @@ pub(super) fn tiny_tracer(text: &str, (w, h): (usize, usize), mistakes: Mistakes
         at.set(at.get() + 1);
         match code as i32 {
             10 => lights.push((triple(take(3)), triple(take(3)))),
-            13 | 14 | 22 => {
+            13 | 14 | 16 | 22 => {
                 let (ambient, diffuse, _specular) = (triple(take(3)), triple(take(3)), take(3));
                 let shape = match code as i32 {
                     13 => Shape::Sphere(triple(take(3)), take(1)[0]),
                     14 => Shape::Plane(unit(triple(take(3))), triple(take(3))),
+                    // Spec §5.3's frame: x projected into the plane, y = n × x.
+                    16 => {
+                        let (n, point, x) = (unit(triple(take(3))), triple(take(3)), take(3));
+                        let x = unit(triple(x));
+                        let x = unit(sub(x, scale(n, dot(n, x))));
+                        let size = take(2);
+                        let background = [triple(take(3)), triple(take(3))];
+                        let _specular = take(3);
+                        Shape::Tiled(n, point, [x, cross(n, x)], size, background)
+                    }
                     _ => {
                         let (base, line, size) = (triple(take(3)), triple(take(3)), take(2));
                         assert_eq!(unit(line), [0.0, 1.0, 0.0], "an upright cylinder only");
@@ -861,7 +884,7 @@ pub(super) fn tiny_tracer(text: &str, (w, h): (usize, usize), mistakes: Mistakes
                 }
                 (-bb - disc.sqrt()) / (2.0 * a)
             }
-            Shape::Plane(n, q) => {
+            Shape::Plane(n, q) | Shape::Tiled(n, q, ..) => {
                 let nd = dot(n, d);
                 if nd == 0.0 {
                     return None;
@@ -938,8 +961,26 @@ pub(super) fn tiny_tracer(text: &str, (w, h): (usize, usize), mistakes: Mistakes
             let point = [eye[0] + t * d[0], eye[1] + t * d[1], eye[2] + t * d[2]];
             let normal = match *shape {
                 Shape::Sphere(c, _) => unit(sub(point, c)),
-                Shape::Plane(n, _) => n,
+                Shape::Plane(n, _) | Shape::Tiled(n, ..) => n,
                 Shape::Cylinder(c, _, _) => unit([point[0] - c[0], 0.0, point[2] - c[2]]),
+            };
+            // Spec §5.4: the foreground where relx + rely is odd.
+            let (ambient, diffuse) = match shape {
+                Shape::Tiled(_, origin, [x, y], size, [back_ambient, back_diffuse]) => {
+                    let v = sub(point, *origin);
+                    let offset = if mistakes.tile_no_offset {
+                        0.0
+                    } else {
+                        10000.0
+                    };
+                    let relx = (offset + dot(*x, v) / size[0]).trunc() as i64;
+                    let rely = (offset + dot(*y, v) / size[1]).trunc() as i64;
+                    match (relx + rely).rem_euclid(2) == 1 {
+                        true => (ambient, diffuse),
+                        false => (back_ambient, back_diffuse),
+                    }
+                }
+                _ => (ambient, diffuse),
             };
             let mut colour = *ambient;
             for &(emissivity, location) in &lights {
