@@ -171,7 +171,7 @@ impl Query for Forced<'_> {
 
     #[inline]
     fn other_tile(self, index: usize) -> bool {
-        (self.overrides.iter()).any(|o| *o == Override::Tile { object: index })
+        self.overrides.contains(&Override::Tile { object: index })
     }
 }
 
