@@ -163,6 +163,8 @@ struct Decisions {
     light: Option<usize>,
     /// The geometry of each object hit on the ray under way.
     tested: Vec<(usize, Option<Geometry>)>,
+    /// The object the ray under way hit.
+    hit: Option<usize>,
     taken: Vec<Decision>,
 }
 
@@ -184,6 +186,10 @@ impl Recorder for Decisions {
     fn record(&mut self, event: impl FnOnce() -> Event) {
         match event() {
             Event::Segment { depth, .. } => {
+                // A mirror ray: the object it leaves reflected.
+                if let Some(object) = self.hit.take().filter(|_| depth > 0) {
+                    self.take(Override::NoBounce { object }, None, None);
+                }
                 self.depth = depth;
                 self.tested.clear();
                 self.light = None;
@@ -191,6 +197,7 @@ impl Recorder for Decisions {
             Event::Closest {
                 hit: Some((object, _)),
             } => {
+                self.hit = Some(object);
                 let rays = match self.depth {
                     0 => Rays::Camera,
                     _ => Rays::Mirror,
@@ -252,6 +259,7 @@ fn key(flip: &Override) -> Key {
         Override::Miss { object, rays } => (rays as u8, object),
         Override::Shadow { light, blocked } => (3 + u8::from(blocked), light),
         Override::Tile { object } => (5, object),
+        Override::NoBounce { object } => (6, object),
     }
 }
 
@@ -650,6 +658,9 @@ fn words(scene: &Scene, flips: &[Override]) -> String {
                 "{} takes the other tile's colour",
                 object_name(scene, object)
             )),
+            Override::NoBounce { object } => {
+                said.push(format!("{} reflects nothing", object_name(scene, object)))
+            }
         }
     }
     said.join(", and ")
@@ -718,6 +729,11 @@ fn advice(scene: &Scene, flips: &[Override], geometry: Option<Geometry>) -> Stri
         Override::Tile { .. } => "look at how your program chooses the tile's material: \
              the foreground where relx + rely is odd (spec §5.4)"
             .to_string(),
+        Override::NoBounce { object } => format!(
+            "look at when your program traces the mirror ray off {}: wherever its specular \
+             is not zero and the path is within MAX_DIST (spec §4.5), at every depth",
+            object_name(scene, object)
+        ),
     }
 }
 

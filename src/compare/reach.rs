@@ -81,15 +81,17 @@ impl Paths {
     }
 
     /// Whether this path may take the decision `flip` forces the other way: it hits the
-    /// object (by camera or mirror ray; a tile's colour too), or the object blocks one of
-    /// its shadow rays, or the light's term is consulted.
+    /// object (by camera or mirror ray; a tile's colour and a mirror ray too), or the
+    /// object blocks one of its shadow rays, or the light's term is consulted.
     pub(crate) fn may_take(self, flip: &Override) -> bool {
         let bit = match *flip {
             Override::Miss {
                 object,
                 rays: Rays::Shadow,
             } => BLOCKERS.bit(object),
-            Override::Miss { object, .. } | Override::Tile { object } => HITS.bit(object),
+            Override::Miss { object, .. }
+            | Override::Tile { object }
+            | Override::NoBounce { object } => HITS.bit(object),
             Override::Shadow { light, .. } => LIGHTS.bit(light),
         };
         self.0 & bit != 0

@@ -80,6 +80,12 @@ pub(crate) trait Query: Copy {
     fn other_tile(self, _index: usize) -> bool {
         false
     }
+
+    /// Whether a hit on object `index` is forced to trace no mirror ray.
+    #[inline(always)]
+    fn no_bounce(self, _index: usize) -> bool {
+        false
+    }
 }
 
 /// The answer alone, the quickest way: the tiles' lists and the hierarchy.
@@ -173,6 +179,12 @@ impl Query for Forced<'_> {
     fn other_tile(self, index: usize) -> bool {
         self.overrides.contains(&Override::Tile { object: index })
     }
+
+    #[inline]
+    fn no_bounce(self, index: usize) -> bool {
+        self.overrides
+            .contains(&Override::NoBounce { object: index })
+    }
 }
 
 /// The rays a forced miss applies to ([`Override::Miss`]).
@@ -187,8 +199,8 @@ pub enum Rays {
 }
 
 /// One decision of the tracer forced the other way on every pixel, whatever the geometry
-/// says: an object missed by one kind of ray, a light's shadow test decided, or a tiled
-/// plane's tile colour swapped.
+/// says: an object missed by one kind of ray, a light's shadow test decided, a tiled
+/// plane's tile colour swapped, or an object's mirror ray left out.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Override {
     /// Object `object` (its index among the scene's objects) is missed by `rays`.
@@ -208,6 +220,11 @@ pub enum Override {
     /// A hit on tiled plane `object` takes the other tile's material (spec §5.4).
     Tile {
         /// The plane's index among the scene's objects.
+        object: usize,
+    },
+    /// A hit on `object` traces no mirror ray (spec §4.5).
+    NoBounce {
+        /// The object's index among the scene's objects.
         object: usize,
     },
 }

@@ -310,7 +310,8 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
                     colour: *colour,
                 });
                 // 7. The mirror: S ⊙ ray_trace(hit, R, total_dist, this object).
-                let mirror = match depth == bounces || !self.reflects(h.rules, &h.material) {
+                let stops = depth == bounces || query.no_bounce(h.object);
+                let mirror = match stops || !self.reflects(h.rules, &h.material) {
                     true => None,
                     false => mirror(&p.ray, &h.surface),
                 };

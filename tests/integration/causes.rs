@@ -782,6 +782,19 @@ fn decision_flips_name_a_hidden_object_and_nothing_for_a_rule_of_the_colours() {
         "sphere (line 25) is missed by camera rays"
     );
     assert_eq!(flips[0]["explains"], flips[0]["of"], "{json:#}");
+    // spec1's first sphere (line 4), a mirror, reflecting nothing: the mirror rays off
+    // it, one group.
+    if let Some(spec1) = course("spec1") {
+        let student = dir.join("no-mirror.ppm");
+        render(&spec1, SIZE, &["--variant", "no-mirror@4"], &student);
+        let (_, json) = causes(&spec1, &student);
+        let flips = json["flips"].as_array().unwrap();
+        assert_eq!(flips.len(), 1, "{json:#}");
+        assert_eq!(flips[0]["decision"], "sphere (line 4) reflects nothing");
+        assert_eq!(flips[0]["explains"], flips[0]["of"], "{json:#}");
+        let trace = traced(flips[0]["trace"].as_str().unwrap());
+        assert!(trace.contains("\nreflected ray 1 from"), "{trace}");
+    }
     // Squared falloff changes every lit colour and no decision: a decision that gives a
     // few pixels the student's bytes by chance is not told.
     let student = dir.join("square-falloff.ppm");
