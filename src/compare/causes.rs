@@ -358,8 +358,9 @@ fn stated(found: &[Diagnosis], differing: usize) -> Vec<Cause> {
         };
     }
     // Two mistakes that each hide the other's pixels (a reader that stopped, in an image
-    // a row off): stated together where the pair is supported and each explains at least
-    // half of what the other alone leaves, the one that explains more alone first.
+    // a row off; a row off whose bytes are rounded): stated together where the pair is
+    // supported and each explains at least half of what the other alone leaves, a move
+    // before a rule of the bytes, else the one that explains more alone first.
     let Some((other, other_broken)) = alone(second) else {
         return Vec::new();
     };
@@ -367,7 +368,12 @@ fn stated(found: &[Diagnosis], differing: usize) -> Vec<Cause> {
     if !supported(both, differing, both_broken) || !each(fixed) || !each(other) {
         return Vec::new();
     }
-    let [(a, a_alone), (b, _)] = match other > fixed {
+    // A move before a rule of the bytes (the rows are put back, then the bytes are
+    // read); else the one that explains more alone first.
+    let site = |v: &[Variant]| v[0].kind.row().site;
+    let move_second = site(second) == Site::Camera && site(order[0]) == Site::Bytes;
+    let move_first = site(order[0]) == Site::Camera && site(second) == Site::Bytes;
+    let [(a, a_alone), (b, _)] = match move_second || (!move_first && other > fixed) {
         true => [(second, (other, other_broken)), (order[0], (fixed, broken))],
         false => [(order[0], (fixed, broken)), (second, (other, other_broken))],
     };

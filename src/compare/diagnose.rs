@@ -353,8 +353,40 @@ pub(crate) fn with_mask(
     candidates.extend(stopped(scene));
     candidates.extend(scoped(scene, &paths));
     candidates.retain(|v| may_change(scene, options, v));
-    let mut first_round: Vec<(Vec<Variant>, f64)> = (candidates.iter())
-        .filter_map(|&v| Some((vec![v], estimate_on(0, &[v])?.0)))
+    // Each move with each rule of the bytes, from the start: a row off whose bytes are
+    // rounded agrees worse than the image as it is under either alone, so neither would
+    // be the best to pair.
+    // The move tried so is the one under which the reference's own pixels, moved, agree
+    // best within one level on the large sample (no ray traced), where it beats the
+    // image as it is.
+    let rules = |v: &&Variant| matches!(v.kind, Kind::RoundBytes | Kind::Scale256);
+    let within_one = |from: &dyn Fn(usize) -> Option<usize>| {
+        let close = |i: usize, j: usize| {
+            super::pixel_difference(reference.pixels[j], student.pixels[i]) <= levels.max(1)
+        };
+        let sample = samples[1].0.iter();
+        sample
+            .filter(|&&i| from(i).is_some_and(|j| close(i, j)))
+            .count()
+    };
+    let as_it_is = within_one(&|i| Some(i));
+    let best_moved = (candidates.iter().filter(|v| SHIFTS.contains(&v.kind)))
+        .filter_map(|&m| {
+            let moved = options.with_variant(m).ok()?;
+            let from = shifted_from(options, &moved, &[m])?;
+            Some((m, within_one(&from)))
+        })
+        .filter(|&(_, n)| n > as_it_is)
+        .max_by_key(|&(_, n)| n)
+        .map(|(m, _)| m);
+    let moved_bytes = (best_moved.into_iter())
+        .flat_map(|m| candidates.iter().filter(rules).map(move |&r| vec![m, r]));
+    let tried_first: Vec<Vec<Variant>> = (candidates.iter().map(|&v| vec![v]))
+        .chain(moved_bytes)
+        .collect();
+    let mut first_round: Vec<(Vec<Variant>, f64)> = (tried_first.into_iter())
+        .filter_map(|v| Some((estimate_on(0, &v)?.0, v)))
+        .map(|(agreement, v)| (v, agreement))
         .filter(|(_, agreement)| *agreement > before)
         .collect();
     // More candidates near the best of a kind: each tried on the small sample, kept
@@ -445,17 +477,38 @@ pub(crate) fn with_mask(
         .collect();
     // Best first; a stable sort keeps the table's order among equals.
     estimated.sort_by(|a, b| b.agreement.total_cmp(&a.agreement));
+    // The best of the moves that do better than the image as it is (a row off whose
+    // pixels another rule of the bytes hides may not be the best alone).
+    let best_move = (estimated.iter())
+        .find(|t| matches!(t.variants[..], [v] if SHIFTS.contains(&v.kind)))
+        .map(|t| t.variants[0]);
     // The best estimate rendered whole: its agreement is the one reported.
     let mut found: Vec<Tried> = Vec::new();
     if let Some(tried) = estimated.into_iter().next()
         && let Some((agreement, counts)) = exact(&tried.variants)
         && agreement > before
     {
+        let pair = tried.variants.clone();
         found.push(Tried {
             agreement,
             counts: Some(counts),
             ..tried
         });
+        // A move with a rule of the bytes: each alone too, for the causes' order.
+        if let [_, _] = pair[..] {
+            for one in pair {
+                if let Some((agreement, counts)) = exact(&[one]) {
+                    let pixel = estimate(&[one]).and_then(|(_, fixed)| fixed.first().copied());
+                    found.push(Tried {
+                        variants: vec![one],
+                        agreement,
+                        max_dist_range: None,
+                        pixel,
+                        counts: Some(counts),
+                    });
+                }
+            }
+        }
     }
     // MAX_DIST can change only the pixels whose path reflects: it is estimated (at the
     // cost of a render) only where fixing every differing one of them would agree better
@@ -499,36 +552,44 @@ pub(crate) fn with_mask(
     }
     found.sort_by(|a, b| b.agreement.total_cmp(&a.agreement));
     // The best one with each other candidate: a second mistake often shows only once the
-    // first is undone (an image upside down hides everything else).
+    // first is undone (an image upside down hides everything else). The best move is
+    // tried as the first too, where it is not the best alone.
     if let Some(best) = found.first().filter(|best| best.agreement < 1.0).cloned() {
-        let first = best.variants[0];
         let mut estimated = found.iter().map(|t| t.variants[0]);
         let max_dist = estimated.rfind(|v| v.kind == Kind::MaxDist);
-        let partners = candidates.iter().copied().chain(max_dist);
-        let partners: Vec<Variant> = partners.filter(|p| p.id() != first.id()).collect();
-        // Under a first that only moves the pixels (a row off, upside down), the partner
-        // is looked for on the pixels it leaves, where the samples of every differing
-        // pixel would hold a handful: it is scored exactly among those that fix most of
-        // them.
-        let top = match scorer.left(first) {
-            Some(left) => scorer.best_partner(first, partners, &left),
-            None => {
-                let mut pairs: Vec<(Vec<Variant>, f64)> = (partners.into_iter())
-                    .filter_map(|partner| {
-                        Some((vec![first, partner], estimate_on(0, &[first, partner])?.0))
-                    })
-                    .collect();
-                shortlist(&mut pairs);
-                let pairs =
-                    (pairs.into_iter()).filter_map(|(pair, _)| Some((pair[1], estimate(&pair)?)));
-                pairs.max_by(|a, b| a.1.0.total_cmp(&b.1.0).then(std::cmp::Ordering::Greater))
+        let mut firsts = vec![best.variants[0]];
+        firsts.extend(best_move.filter(|&v| v != best.variants[0]));
+        let mut top: Option<(Variant, Variant, f64, Counts, Vec<usize>)> = None;
+        for first in firsts {
+            let partners = candidates.iter().copied().chain(max_dist);
+            let partners: Vec<Variant> = partners.filter(|p| p.id() != first.id()).collect();
+            // Under a first that only moves the pixels (a row off, upside down), the
+            // partner is looked for on the pixels it leaves, where the samples of every
+            // differing pixel would hold a handful.
+            let partner = match scorer.left(first) {
+                Some(left) => scorer.best_partner(first, partners, &left),
+                None => {
+                    let mut pairs: Vec<(Vec<Variant>, f64)> = (partners.into_iter())
+                        .filter_map(|partner| {
+                            Some((vec![first, partner], estimate_on(0, &[first, partner])?.0))
+                        })
+                        .collect();
+                    shortlist(&mut pairs);
+                    let pairs = (pairs.into_iter())
+                        .filter_map(|(pair, _)| Some((pair[1], estimate(&pair)?)));
+                    pairs.max_by(|a, b| a.1.0.total_cmp(&b.1.0).then(std::cmp::Ordering::Greater))
+                }
+            };
+            let best_so_far = top.as_ref().map_or(best.agreement, |t| t.2);
+            if let Some((partner, (estimated, fixed))) = partner
+                && estimated > best.agreement
+                && let Some((agreement, counts)) = exact(&[first, partner])
+                && agreement > best_so_far
+            {
+                top = Some((first, partner, agreement, counts, fixed));
             }
-        };
-        if let Some((partner, (estimated, fixed))) = top
-            && estimated > best.agreement
-            && let Some((agreement, counts)) = exact(&[first, partner])
-            && agreement > best.agreement
-        {
+        }
+        if let Some((first, partner, agreement, counts, fixed)) = top {
             // The pair's pixel: one the first alone leaves, so that it shows the partner
             // (the samples are in pixel order).
             let alone = estimate(&[first]).map_or(Vec::new(), |(_, fixed)| fixed);
@@ -548,18 +609,21 @@ pub(crate) fn with_mask(
                 counts: Some(counts),
             };
             found.insert(0, pair);
-            // The partner alone too: which of the two comes first is what each explains
+            // Each of the two alone too: which of them comes first is what each explains
             // alone (a whole-image mistake may hide the other's pixels).
-            if !found.iter().any(|t| t.variants == [partner])
-                && let Some((agreement, counts)) = exact(&[partner])
-            {
-                found.push(Tried {
-                    variants: vec![partner],
-                    agreement,
-                    max_dist_range: None,
-                    pixel: None,
-                    counts: Some(counts),
-                });
+            for one in [first, partner] {
+                if !found.iter().any(|t| t.variants == [one])
+                    && let Some((agreement, counts)) = exact(&[one])
+                {
+                    let pixel = estimate(&[one]).and_then(|(_, fixed)| fixed.first().copied());
+                    found.push(Tried {
+                        variants: vec![one],
+                        agreement,
+                        max_dist_range: None,
+                        pixel: pixel.filter(|_| one == first),
+                        counts: Some(counts),
+                    });
+                }
             }
         }
     }
