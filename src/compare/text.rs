@@ -318,6 +318,26 @@ pub fn diagnosis(report: &Report) -> Vec<String> {
             }
             line(text);
         }
+        // A pair stated together because each hides the other's pixels: its first is no
+        // cause alone, and the report says why it is one.
+        if let [first, second, ..] = causes
+            && !super::causes::supported(first.explains, first.of, first.breaks)
+            && let Some(pair) = diagnosis.iter().find(|d| {
+                let both = first.variants.iter().chain(&second.variants);
+                d.variants.len() == 2
+                    && both.clone().count() == 2
+                    && both.into_iter().all(|v| d.variants.contains(v))
+            })
+            && let (Some(explains), Some(breaks)) = (pair.explains, pair.breaks)
+        {
+            line(format!(
+                "  (1 and 2 hide each other's pixels: neither alone makes half of them agree \
+                 without breaking others; together they explain {} of {} and break {})",
+                thousands(explains),
+                thousands(first.of),
+                thousands(breaks)
+            ));
+        }
         // The best, when it is one record's edit that explains nearly everything, in
         // words a student acts on.
         if let Some(best) = diagnosis.first()

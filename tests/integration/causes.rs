@@ -914,5 +914,32 @@ fn a_row_off_with_its_bytes_rounded_is_named_so_and_not_jitter() {
         render(&d05, (320, 240), &["--variant", &variants], &student);
         let (found, json) = causes(&d05, &student);
         assert_eq!(found, ["row-offset=1", rule], "{json:#}");
+        // The row offset alone is no cause (it breaks more than it explains): the text
+        // says why it is stated, with the pair's counts.
+        let [d05, student] = [&d05, &student].map(|p| p.to_str().unwrap());
+        let output = super::common::run(&["compare", "--diagnose", d05, student], b"");
+        let text = String::from_utf8(output.stdout).unwrap();
+        let pair = &json["diagnosis"][0];
+        let said = format!(
+            "(1 and 2 hide each other's pixels: neither alone makes half of them agree \
+             without breaking others; together they explain {} of {} and break 0)",
+            thousands(pair["explains"].as_u64().unwrap()),
+            thousands(pair["differing"].as_u64().unwrap()),
+        );
+        assert!(text.contains(&said), "{said}\n{text}");
+        assert_eq!(pair["explains"], pair["differing"], "{pair}");
     }
+}
+
+/// 1234567 as "1,234,567", as the text report writes counts.
+fn thousands(n: u64) -> String {
+    let digits = n.to_string();
+    let mut out = String::new();
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i).is_multiple_of(3) {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
 }
