@@ -27,12 +27,38 @@ pub fn run(args: &[&str], stdin: &[u8]) -> Output {
     child.wait_with_output().expect("the binary runs")
 }
 
-/// A fresh, empty folder for one test.
-pub fn folder(name: &str) -> PathBuf {
+/// A fresh, empty folder for one test, removed when the test passes (a failing test's is
+/// kept, to look at): a run of the tests left some 200 MB of images behind before.
+pub fn folder(name: &str) -> Folder {
     let dir = std::env::temp_dir().join(format!("legacy-rt-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
-    dir
+    Folder(dir)
+}
+
+/// A test's folder ([`folder`]): a path, removed on drop unless the test is failing.
+pub struct Folder(PathBuf);
+
+impl std::ops::Deref for Folder {
+    type Target = Path;
+
+    fn deref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl AsRef<Path> for Folder {
+    fn as_ref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl Drop for Folder {
+    fn drop(&mut self) {
+        if !std::thread::panicking() {
+            let _ = std::fs::remove_dir_all(&self.0);
+        }
+    }
 }
 
 /// The `.txt` files of a folder, sorted by name.

@@ -1134,12 +1134,8 @@ fn max_dist_s_paths_on_a_sample_are_those_of_the_whole_image() {
 #[test]
 fn an_estimated_max_dist_names_a_pixel_it_explains() {
     let scene = example("mirrors");
-    let (student, reference) = pair(
-        &folder("max_dist_pixel"),
-        &scene,
-        (80, 60),
-        &["--max-dist", "70"],
-    );
+    let dir = folder("max_dist_pixel");
+    let (student, reference) = pair(&dir, &scene, (80, 60), &["--max-dist", "70"]);
     let (code, json) = report(&[
         "--diagnose",
         scene.to_str().unwrap(),

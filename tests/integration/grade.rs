@@ -61,7 +61,7 @@ fn as_p3(p6: &[u8]) -> Vec<u8> {
 /// A class: two example scenes, and students whose images are the reference, a
 /// single-precision textbook tracer's, two variants', a PNG, a P3, a smaller size,
 /// missing files, garbage, a truncated image and a folder where an image should be.
-fn class(name: &str) -> PathBuf {
+fn class(name: &str) -> common::Folder {
     let dir = common::folder(name);
     fs::create_dir_all(dir.join("scenes")).unwrap();
     for scene in SCENES {
