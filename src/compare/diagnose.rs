@@ -251,7 +251,6 @@ pub(crate) fn with_mask(
     // those pixels are traced again, the others keep the reference's bytes (under its
     // byte rule). `None`: any pixel.
     let paths = &rendered.paths;
-    let paths_of_all = paths;
     let given: Vec<Variant> = options.variants.iter().collect();
     let reach = |variants: &[Variant]| match paths.len() == pixels {
         true => Reach::of(scene, &given, variants),
@@ -325,10 +324,10 @@ pub(crate) fn with_mask(
     // The share of the pixels whose camera or mirror rays hit an object that differ:
     // counted on the reference's paths where it has them (every pixel, in one pass),
     // else estimated from the samples.
-    let differing_where_hit = |object: usize| match paths_of_all.len() == pixels {
+    let differing_where_hit = |object: usize| match rendered.paths.len() == pixels {
         true => {
             let (mut hit, mut differ) = (0usize, 0usize);
-            for (i, path) in paths_of_all.iter().enumerate() {
+            for (i, path) in rendered.paths.iter().enumerate() {
                 if path.may_hit(object) {
                     hit += 1;
                     differ += (mask[i / 64] >> (i % 64) & 1) as usize;
@@ -353,12 +352,11 @@ pub(crate) fn with_mask(
     candidates.extend(stopped(scene));
     candidates.extend(scoped(scene, &paths));
     candidates.retain(|v| may_change(scene, options, v));
-    // Each move with each rule of the bytes, from the start: a row off whose bytes are
+    // A move with each rule of the bytes, from the start: a row off whose bytes are
     // rounded agrees worse than the image as it is under either alone, so neither would
-    // be the best to pair.
-    // The move tried so is the one under which the reference's own pixels, moved, agree
-    // best within one level on the large sample (no ray traced), where it beats the
-    // image as it is.
+    // be the best to pair. The move is the one under which the reference's own pixels,
+    // moved, agree best within one level on the large sample (no ray traced), where it
+    // beats the image as it is.
     let rules = |v: &&Variant| matches!(v.kind, Kind::RoundBytes | Kind::Scale256);
     let within_one = |from: &dyn Fn(usize) -> Option<usize>| {
         let close = |i: usize, j: usize| {
@@ -477,11 +475,19 @@ pub(crate) fn with_mask(
         .collect();
     // Best first; a stable sort keeps the table's order among equals.
     estimated.sort_by(|a, b| b.agreement.total_cmp(&a.agreement));
-    // The best of the moves that do better than the image as it is (a row off whose
-    // pixels another rule of the bytes hides may not be the best alone).
-    let best_move = (estimated.iter())
-        .find(|t| matches!(t.variants[..], [v] if SHIFTS.contains(&v.kind)))
-        .map(|t| t.variants[0]);
+    // One variant scored exactly, for the causes' order, with the first pixel of the large
+    // sample it fixes where `pixel`.
+    let alone = |one: Variant, pixel: bool| {
+        let (agreement, counts) = exact(&[one])?;
+        let fixed = || estimate(&[one]).and_then(|(_, fixed)| fixed.first().copied());
+        Some(Tried {
+            variants: vec![one],
+            agreement,
+            max_dist_range: None,
+            pixel: if pixel { fixed() } else { None },
+            counts: Some(counts),
+        })
+    };
     // The best estimate rendered whole: its agreement is the one reported.
     let mut found: Vec<Tried> = Vec::new();
     if let Some(tried) = estimated.into_iter().next()
@@ -496,18 +502,7 @@ pub(crate) fn with_mask(
         });
         // A move with a rule of the bytes: each alone too, for the causes' order.
         if let [_, _] = pair[..] {
-            for one in pair {
-                if let Some((agreement, counts)) = exact(&[one]) {
-                    let pixel = estimate(&[one]).and_then(|(_, fixed)| fixed.first().copied());
-                    found.push(Tried {
-                        variants: vec![one],
-                        agreement,
-                        max_dist_range: None,
-                        pixel,
-                        counts: Some(counts),
-                    });
-                }
-            }
+            found.extend(pair.into_iter().filter_map(|one| alone(one, true)));
         }
     }
     // MAX_DIST can change only the pixels whose path reflects: it is estimated (at the
@@ -552,48 +547,39 @@ pub(crate) fn with_mask(
     }
     found.sort_by(|a, b| b.agreement.total_cmp(&a.agreement));
     // The best one with each other candidate: a second mistake often shows only once the
-    // first is undone (an image upside down hides everything else). The best move is
-    // tried as the first too, where it is not the best alone.
+    // first is undone (an image upside down hides everything else).
     if let Some(best) = found.first().filter(|best| best.agreement < 1.0).cloned() {
+        let first = best.variants[0];
         let mut estimated = found.iter().map(|t| t.variants[0]);
         let max_dist = estimated.rfind(|v| v.kind == Kind::MaxDist);
-        let mut firsts = vec![best.variants[0]];
-        firsts.extend(best_move.filter(|&v| v != best.variants[0]));
-        let mut top: Option<(Variant, Variant, f64, Counts, Vec<usize>)> = None;
-        for first in firsts {
-            let partners = candidates.iter().copied().chain(max_dist);
-            let partners: Vec<Variant> = partners.filter(|p| p.id() != first.id()).collect();
-            // Under a first that only moves the pixels (a row off, upside down), the
-            // partner is looked for on the pixels it leaves, where the samples of every
-            // differing pixel would hold a handful.
-            let partner = match scorer.left(first) {
-                Some(left) => scorer.best_partner(first, partners, &left),
-                None => {
-                    let mut pairs: Vec<(Vec<Variant>, f64)> = (partners.into_iter())
-                        .filter_map(|partner| {
-                            Some((vec![first, partner], estimate_on(0, &[first, partner])?.0))
-                        })
-                        .collect();
-                    shortlist(&mut pairs);
-                    let pairs = (pairs.into_iter())
-                        .filter_map(|(pair, _)| Some((pair[1], estimate(&pair)?)));
-                    pairs.max_by(|a, b| a.1.0.total_cmp(&b.1.0).then(std::cmp::Ordering::Greater))
-                }
-            };
-            let best_so_far = top.as_ref().map_or(best.agreement, |t| t.2);
-            if let Some((partner, (estimated, fixed))) = partner
-                && estimated > best.agreement
-                && let Some((agreement, counts)) = exact(&[first, partner])
-                && agreement > best_so_far
-            {
-                top = Some((first, partner, agreement, counts, fixed));
+        let partners = candidates.iter().copied().chain(max_dist);
+        let partners: Vec<Variant> = partners.filter(|p| p.id() != first.id()).collect();
+        // Under a first that only moves the pixels (a row off, upside down), the partner
+        // is looked for on the pixels it leaves, where the samples of every differing
+        // pixel would hold a handful.
+        let top = match scorer.left(first) {
+            Some(left) => scorer.best_partner(first, partners, &left),
+            None => {
+                let mut pairs: Vec<(Vec<Variant>, f64)> = (partners.into_iter())
+                    .filter_map(|partner| {
+                        Some((vec![first, partner], estimate_on(0, &[first, partner])?.0))
+                    })
+                    .collect();
+                shortlist(&mut pairs);
+                let pairs =
+                    (pairs.into_iter()).filter_map(|(pair, _)| Some((pair[1], estimate(&pair)?)));
+                pairs.max_by(|a, b| a.1.0.total_cmp(&b.1.0).then(std::cmp::Ordering::Greater))
             }
-        }
-        if let Some((first, partner, agreement, counts, fixed)) = top {
+        };
+        if let Some((partner, (estimated, fixed))) = top
+            && estimated > best.agreement
+            && let Some((agreement, counts)) = exact(&[first, partner])
+            && agreement > best.agreement
+        {
             // The pair's pixel: one the first alone leaves, so that it shows the partner
             // (the samples are in pixel order).
-            let alone = estimate(&[first]).map_or(Vec::new(), |(_, fixed)| fixed);
-            let pixel = (fixed.iter().find(|i| alone.binary_search(i).is_err()))
+            let alone_fixed = estimate(&[first]).map_or(Vec::new(), |(_, fixed)| fixed);
+            let pixel = (fixed.iter().find(|i| alone_fixed.binary_search(i).is_err()))
                 .or(fixed.first())
                 .copied();
             let range = match (first.kind, partner.kind) {
@@ -609,21 +595,10 @@ pub(crate) fn with_mask(
                 counts: Some(counts),
             };
             found.insert(0, pair);
-            // Each of the two alone too: which of them comes first is what each explains
+            // The partner alone too: which of the two comes first is what each explains
             // alone (a whole-image mistake may hide the other's pixels).
-            for one in [first, partner] {
-                if !found.iter().any(|t| t.variants == [one])
-                    && let Some((agreement, counts)) = exact(&[one])
-                {
-                    let pixel = estimate(&[one]).and_then(|(_, fixed)| fixed.first().copied());
-                    found.push(Tried {
-                        variants: vec![one],
-                        agreement,
-                        max_dist_range: None,
-                        pixel: pixel.filter(|_| one == first),
-                        counts: Some(counts),
-                    });
-                }
+            if !found.iter().any(|t| t.variants == [partner]) {
+                found.extend(alone(partner, false));
             }
         }
     }
@@ -1250,13 +1225,12 @@ fn distinct(of: impl Iterator<Item = usize>) -> Vec<usize> {
     all
 }
 
-/// The object most involved in the sampled differing pixels' paths, and how: each path
-/// counts once for an object, as the camera ray's hit first, else as a shadow's blocker,
-/// else as a mirror ray's hit.
-/// Of the sampled paths of the differing pixels and of the agreeing ones (`paths`), the
-/// object most involved in the differing: with the sampled differing pixels' channels
-/// moved by `moved`, and `differing_where_hit(object)` the share of the pixels whose rays
-/// hit an object that differ.
+/// The object most involved in the sampled differing pixels' paths (the first of
+/// `paths`; the second, the agreeing ones'), and how: each path counts once for an
+/// object, as the camera ray's hit first, else as a shadow's blocker, else as a mirror
+/// ray's hit. `moved` is how each sampled differing pixel's channels differ, and
+/// `differing_where_hit(object)` the share of the pixels whose rays hit an object that
+/// differ.
 fn focus(
     scene: &Scene,
     [paths, agreeing]: [&[super::Involved]; 2],
