@@ -869,8 +869,9 @@ impl Scorer<'_> {
 impl Scorer<'_> {
     /// The pixels that `first`, a variant that only moves the pixels (a row off, upside
     /// down), leaves differing, and those that agree under it (past an offset's uncovered
-    /// edge, neither), each in order; `None` for any other variant.
-    fn left(&self, first: Variant) -> Option<[Vec<usize>; 2]> {
+    /// edge, neither): each a bit a pixel (pixel i: bit i % 64 of word i / 64) and how
+    /// many; `None` for any other variant.
+    fn left(&self, first: Variant) -> Option<[(Vec<u64>, usize); 2]> {
         if !SHIFTS.contains(&first.kind) {
             return None;
         }
@@ -880,17 +881,17 @@ impl Scorer<'_> {
         let uncovered = uncovered(&first, options.width, options.height);
         let agrees = |i: usize, b: [u8; 3]| within(b, self.student.pixels[i], self.levels);
         let mut edge = edge.into_iter();
-        let [mut left, mut kept] = [Vec::new(), Vec::new()];
+        let words = image.len().div_ceil(64);
+        let [mut left, mut kept] = [(vec![0u64; words], 0), (vec![0u64; words], 0)];
         for (i, b) in image.into_iter().enumerate() {
             let agrees_now = match b {
                 Some(b) => agrees(i, b),
                 None if uncovered(i) => continue,
                 None => edge.next().is_some_and(|b| agrees(i, b)),
             };
-            match agrees_now {
-                true => kept.push(i),
-                false => left.push(i),
-            }
+            let (mask, count) = if agrees_now { &mut kept } else { &mut left };
+            mask[i / 64] |= 1 << (i % 64);
+            *count += 1;
         }
         Some([left, kept])
     }
@@ -905,18 +906,18 @@ impl Scorer<'_> {
         &self,
         first: Variant,
         mut partners: Vec<Variant>,
-        [left, kept]: &[Vec<usize>; 2],
+        [(left, left_count), (kept, kept_count)]: &[(Vec<u64>, usize); 2],
     ) -> Option<(Variant, (f64, Vec<usize>))> {
         let (scene, options) = (self.scene, self.options);
         let moved = options.with_variant(first).ok()?;
+        let pixels = self.rendered.image.pixels.len();
         let samples = SAMPLE.map(|n| {
-            let every = |of: &[usize]| -> Vec<usize> {
-                let step = of.len().div_ceil(n).max(1);
-                of.iter().step_by(step).copied().collect()
+            let every = |mask: &[u64], count: usize| {
+                every_nth(mask, pixels, true, count.div_ceil(n).max(1))
             };
-            [every(left), every(kept)]
+            [every(left, *left_count), every(kept, *kept_count)]
         });
-        if left.is_empty() {
+        if *left_count == 0 {
             return None;
         }
         for v in scoped(scene, &super::involved(scene, &moved, &samples[1][0])) {
@@ -926,7 +927,7 @@ impl Scorer<'_> {
         }
         let agrees = |i: usize, b: [u8; 3]| within(b, self.student.pixels[i], self.levels);
         let share = |n: usize, of: &[usize]| n as f64 / of.len().max(1) as f64;
-        let total = (self.rendered.image.pixels.len()).max(1) as f64;
+        let total = pixels.max(1) as f64;
         // The agreement estimated on sample k, and the pixels it fixes there.
         let estimate = |k: usize, partner: Variant| -> Option<(f64, Vec<usize>)> {
             let [sample_left, sample_kept] = &samples[k];
@@ -942,8 +943,8 @@ impl Scorer<'_> {
                 .filter(|&(&i, &b)| agrees(i, b))
                 .count();
             // The pixels estimated to differ under both (an offset's uncovered edge, none).
-            let differing = left.len() as f64 * (1.0 - share(fixed.len(), sample_left))
-                + kept.len() as f64 * (1.0 - share(still, sample_kept));
+            let differing = *left_count as f64 * (1.0 - share(fixed.len(), sample_left))
+                + *kept_count as f64 * (1.0 - share(still, sample_kept));
             (!fixed.is_empty()).then_some(((total - differing) / total, fixed))
         };
         let mut first_round: Vec<(Variant, f64)> = (partners.into_iter())
