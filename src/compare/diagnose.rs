@@ -1399,10 +1399,16 @@ fn best_max_dist(
         return None;
     }
     // Among the ranges that agree best, the one with the roundest D (the student wrote
-    // 70, not 68.917), then the smallest.
+    // 70, not 68.917), then the smallest. The last range holds its end: the probe's
+    // MAX_DIST itself gives its image (a student's 1000 is 1000, not 997).
+    let last = intervals.len() - 1;
+    let roundest_in = |i: usize, low: f64| match i == last {
+        true => roundest(low, end(i).next_up()),
+        false => roundest(low, end(i)),
+    };
     let (d, range) = (intervals.iter().enumerate())
         .filter(|&(_, &(_, count))| count == best)
-        .map(|(i, &(low, _))| (roundest(low, end(i)), [low, end(i)]))
+        .map(|(i, &(low, _))| (roundest_in(i, low), [low, end(i)]))
         .max_by(|((d1, step1), _), ((d2, step2), _)| step1.total_cmp(step2).then(d2.total_cmp(d1)))
         .map(|((d, _), range)| (d, range))?;
     Some((d, range, best))
@@ -1552,6 +1558,28 @@ mod tests {
                 assert_eq!(counts.fixed, fixed, "{name} {}", ids.join(","));
             }
         }
+    }
+
+    #[test]
+    fn a_max_dist_whose_range_reaches_the_probe_s_limit_may_be_the_limit() {
+        // One pixel agrees once D reaches 950, and so on up to the probe's MAX_DIST,
+        // whose image it is too: D lies in [950, 1000], and 1000 is its roundest value
+        // (were the range open at its end, 950 would be).
+        let change = super::super::PathChange {
+            start: 950.0,
+            pixel: 0,
+            agrees: true,
+        };
+        let found = best_max_dist(&[false], &[change], |_| 1.0, 32.0);
+        assert_eq!(found, Some((PROBE_LIMIT, [950.0, PROBE_LIMIT], 1.0)));
+        // A range that ends before the limit keeps its end out: [950, 990) gives 950.
+        let back = super::super::PathChange {
+            start: 990.0,
+            agrees: false,
+            ..change
+        };
+        let found = best_max_dist(&[false], &[change, back], |_| 1.0, 32.0);
+        assert_eq!(found, Some((950.0, [950.0, 990.0], 1.0)));
     }
 
     #[test]

@@ -214,6 +214,7 @@ impl Recorder for Decisions {
                 let geometry = negative.then_some(Geometry::NegativeTile);
                 self.take(Override::Tile { object }, None, geometry);
             }
+            Event::CutOff { .. } => self.take(Override::NeverCut, None, None),
             Event::Lamp { light } => self.light = Some(light),
             Event::Light(LightStep::ShadowRay { .. }) => self.tested.clear(),
             Event::Light(LightStep::Blocked { blocker }) => {
@@ -260,6 +261,7 @@ fn key(flip: &Override) -> Key {
         Override::Shadow { light, blocked } => (3 + u8::from(blocked), light),
         Override::Tile { object } => (5, object),
         Override::NoBounce { object } => (6, object),
+        Override::NeverCut => (7, 0),
     }
 }
 
@@ -494,7 +496,7 @@ impl Examined<'_> {
         }
         let i = self.targets[members[0]];
         Flip {
-            decision: words(self.case.scene, &flips),
+            decision: words(self.case.scene, self.case.options.max_dist, &flips),
             condition: condition.map(|(g, _)| g.words().to_string()),
             condition_holds: condition.map(|(_, n)| n),
             lights: lights(self.case.scene, &taken),
@@ -608,9 +610,9 @@ fn shared_geometry(
     (n as f64 >= CONDITION_SHARE * members.len() as f64).then_some((geometry, n))
 }
 
-/// The decisions as the student's program takes them, in words; an object's misses by
-/// several kinds of ray are said once.
-fn words(scene: &Scene, flips: &[Override]) -> String {
+/// The decisions as the student's program takes them (MAX_DIST `max_dist`), in words; an
+/// object's misses by several kinds of ray are said once.
+fn words(scene: &Scene, max_dist: f64, flips: &[Override]) -> String {
     let mut said: Vec<String> = Vec::new();
     let mut objects: Vec<usize> = Vec::new();
     for flip in flips {
@@ -661,6 +663,9 @@ fn words(scene: &Scene, flips: &[Override]) -> String {
             Override::NoBounce { object } => {
                 said.push(format!("{} reflects nothing", object_name(scene, object)))
             }
+            Override::NeverCut => said.push(format!(
+                "a path longer than MAX_DIST ({max_dist}) goes on rather than ending black"
+            )),
         }
     }
     said.join(", and ")
@@ -734,6 +739,10 @@ fn advice(scene: &Scene, flips: &[Override], geometry: Option<Geometry>) -> Stri
              is not zero and the path is within MAX_DIST (spec §4.5), at every depth",
             object_name(scene, object)
         ),
+        Override::NeverCut => "look at where your program compares the path's length with \
+             MAX_DIST: spec §4.2 returns black before each ray whose total_dist, the sum of \
+             the path's segments so far, exceeds it"
+            .to_string(),
     }
 }
 
@@ -751,7 +760,7 @@ mod tests {
     fn an_object_s_misses_are_said_once_with_each_kind_of_ray() {
         let scene = shadows();
         let miss = |object: usize, rays: Rays| Override::Miss { object, rays };
-        let said = |flips: &[Override]| words(&scene, flips);
+        let said = |flips: &[Override]| words(&scene, 32.0, flips);
         assert_eq!(
             said(&[miss(1, Rays::Shadow)]),
             "sphere (line 11) does not block shadow rays"

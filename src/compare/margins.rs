@@ -528,6 +528,9 @@ impl<const PATHS: bool> Recorder for Margins<'_, '_, PATHS> {
                 self.start(&ray, None);
             }
             Event::CutOff { total_dist } => {
+                if PATHS {
+                    self.paths.cut();
+                }
                 let max = self.sizes.max_dist;
                 self.take((total_dist - max).abs() / max);
             }

@@ -25,8 +25,8 @@ use glam::DVec3;
 
 /// One pixel's path in the reference, in 8 bytes: per object hit, per shadow blocker and
 /// per light a bit of its index modulo the field's width (indices that share a bit all
-/// count as named: a pixel is never missed, at worst one more is re-traced), and the
-/// steps its bytes take under round-bytes and scale-256.
+/// count as named: a pixel is never missed, at worst one more is re-traced), the
+/// steps its bytes take under round-bytes and scale-256, and whether MAX_DIST ended it.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct Paths(u64);
 
@@ -40,6 +40,8 @@ const LIGHTS: Field = Field(44, 12);
 /// Three bits per rule: whether each channel's byte is one level above the reference's.
 const ROUND: u32 = 56;
 const SCALE_256: u32 = 59;
+/// Whether MAX_DIST ended the path (spec §4.2 step 1).
+const CUT: u64 = 1 << 62;
 
 impl Field {
     /// The bit of `index`.
@@ -69,6 +71,11 @@ impl Paths {
         self.0 |= BLOCKERS.bit(object) | LIGHTS.bit(light);
     }
 
+    /// MAX_DIST ended the path.
+    pub(crate) fn cut(&mut self) {
+        self.0 |= CUT;
+    }
+
     /// `light` added something.
     pub(crate) fn lit(&mut self, light: usize) {
         self.0 |= LIGHTS.bit(light);
@@ -82,7 +89,8 @@ impl Paths {
 
     /// Whether this path may take the decision `flip` forces the other way: it hits the
     /// object (by camera or mirror ray; a tile's colour and a mirror ray too), or the
-    /// object blocks one of its shadow rays, or the light's term is consulted.
+    /// object blocks one of its shadow rays, or the light's term is consulted, or
+    /// MAX_DIST ended it.
     pub(crate) fn may_take(self, flip: &Override) -> bool {
         let bit = match *flip {
             Override::Miss {
@@ -93,6 +101,7 @@ impl Paths {
             | Override::Tile { object }
             | Override::NoBounce { object } => HITS.bit(object),
             Override::Shadow { light, .. } => LIGHTS.bit(light),
+            Override::NeverCut => CUT,
         };
         self.0 & bit != 0
     }

@@ -86,6 +86,12 @@ pub(crate) trait Query: Copy {
     fn no_bounce(self, _index: usize) -> bool {
         false
     }
+
+    /// Whether a path longer than MAX_DIST is forced to go on rather than end black.
+    #[inline(always)]
+    fn never_cut(self) -> bool {
+        false
+    }
 }
 
 /// The answer alone, the quickest way: the tiles' lists and the hierarchy.
@@ -185,6 +191,11 @@ impl Query for Forced<'_> {
         self.overrides
             .contains(&Override::NoBounce { object: index })
     }
+
+    #[inline]
+    fn never_cut(self) -> bool {
+        self.overrides.contains(&Override::NeverCut)
+    }
 }
 
 /// The rays a forced miss applies to ([`Override::Miss`]).
@@ -200,7 +211,7 @@ pub enum Rays {
 
 /// One decision of the tracer forced the other way on every pixel, whatever the geometry
 /// says: an object missed by one kind of ray, a light's shadow test decided, a tiled
-/// plane's tile colour swapped, or an object's mirror ray left out.
+/// plane's tile colour swapped, an object's mirror ray left out, or MAX_DIST's cut.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Override {
     /// Object `object` (its index among the scene's objects) is missed by `rays`.
@@ -227,6 +238,8 @@ pub enum Override {
         /// The object's index among the scene's objects.
         object: usize,
     },
+    /// A path longer than MAX_DIST goes on (spec §4.2 step 1 never ends it).
+    NeverCut,
 }
 
 /// The closest hit of a ray: the object's index among the scene's objects, and t.

@@ -245,7 +245,7 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
                 let Some(p) = path else { continue };
                 // 1. A path longer than MAX_DIST is black from here.
                 let total_dist = p.total_dist;
-                if total_dist > self.max_dist {
+                if total_dist > self.max_dist && !query.never_cut() {
                     rec.record(|| Event::CutOff { total_dist });
                     *path = None;
                     continue;

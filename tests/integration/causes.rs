@@ -902,6 +902,37 @@ fn tiles_numbered_without_spec_5_4_s_10000_are_one_group_of_decisions() {
 }
 
 #[test]
+fn paths_max_dist_does_not_cut_are_one_group_of_decisions() {
+    // A program whose MAX_DIST is far larger than the course's 32 (the program's own
+    // --max-dist, as a student's constant): the mirrors' paths that spec §4.2 ends black
+    // go on. Found by forcing the cut the other way on each pixel's path, not from
+    // the catalogue's max-dist, which names its D beside it.
+    let dir = folder("causes-flips-max-dist");
+    let scene = example("mirrors");
+    let student = dir.join("far.ppm");
+    render(&scene, SIZE, &["--max-dist", "1000"], &student);
+    let (found, json) = causes(&scene, &student);
+    assert!(
+        found.len() == 1 && found[0].starts_with("max-dist="),
+        "{json:#}"
+    );
+    let flips = json["flips"].as_array().unwrap();
+    assert_eq!(flips.len(), 1, "{json:#}");
+    let flip = &flips[0];
+    assert_eq!(
+        flip["decision"],
+        "a path longer than MAX_DIST (32) goes on rather than ending black"
+    );
+    assert_eq!(flip["explains"], flip["of"], "{json:#}");
+    // Its pixel's path is ended by MAX_DIST in the reference's trace.
+    let trace = traced(flip["trace"].as_str().unwrap());
+    assert!(
+        trace.contains("> MAX_DIST 32.000000: black from here"),
+        "{trace}"
+    );
+}
+
+#[test]
 fn a_row_off_with_its_bytes_rounded_is_named_so_and_not_jitter() {
     // Course scene d05 (finite planes and spheres, three lights, which the tiny tracer
     // does not draw), every row one off and the bytes rounded: under either alone the
