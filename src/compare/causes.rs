@@ -15,7 +15,7 @@ use super::diagnose::{Diagnosis, Focus, with_mask};
 use super::flips::{Flip, flips};
 use super::{Reference, differing, for_each_set, within};
 use crate::render::variant::Site;
-use crate::render::{self, Image, Options, Variant};
+use crate::render::{self, Image, Kind, Options, Variant};
 use crate::scene::Scene;
 use serde::Serialize;
 
@@ -73,6 +73,21 @@ impl Cause {
             pixel,
             under: Vec::new(),
             trace: None,
+        }
+    }
+
+    /// Whether the cause lies only in how the image is written, the rays and their
+    /// colours the reference's: rows, columns or axes moved, or the bytes' rule. A
+    /// student's debug trace, ray by ray, then agrees with the reference.
+    pub fn written_only(&self) -> bool {
+        let writes = [Kind::RowOffset, Kind::ColumnOffset, Kind::UpsideDown];
+        let bytes = [Kind::RoundBytes, Kind::Scale256];
+        match self.variants.is_empty() {
+            // Found from the two images: all but jitter move or recode the bytes.
+            true => self.id != JITTER,
+            false => {
+                (self.variants.iter()).all(|v| writes.contains(&v.kind) || bytes.contains(&v.kind))
+            }
         }
     }
 }

@@ -29,7 +29,7 @@ pub use diagnose::{
 };
 pub use read::{ReadError, read_image};
 
-use crate::render::variant::output_row;
+use crate::render::variant::{Site, output_row};
 use crate::render::{Image, Options, Variant};
 use crate::scene::Scene;
 use serde::Serialize;
@@ -236,6 +236,15 @@ pub struct Report {
     /// another: `[W, H]` with verdict `wrong-size`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub expected_size: Option<[usize; 2]>,
+    /// With diagnose, where the first cause in a ray or a colour was found under causes
+    /// that move the pixels (a row off): the pixel whose ray its pixel shows, as the
+    /// student's program labels that ray in its debug trace (not in the JSON).
+    #[serde(skip)]
+    pub ray_pixel: Option<[usize; 2]>,
+    /// The command that traces `ray_pixel`, when the command line knows the scene's file
+    /// name (not in the JSON).
+    #[serde(skip)]
+    pub ray_trace: Option<String>,
 }
 
 /// A light as the diagnosis names it: "light (line 19)".
@@ -252,9 +261,16 @@ impl Report {
         for worst in &mut self.worst {
             worst.trace = Some(command(worst.x, worst.y, &[]));
         }
+        // A pair's pixel is traced under its first where that moves the rays, as the
+        // pair's second cause is.
         for found in self.diagnosis.iter_mut().flatten() {
-            found.trace = found.pixel.map(|[x, y]| command(x, y, &[]));
+            let under = match &found.variants[..] {
+                [first, _] if first.kind.row().site == Site::Camera => &found.variants[..1],
+                _ => &[],
+            };
+            found.trace = found.pixel.map(|[x, y]| command(x, y, under));
         }
+        self.ray_trace = self.ray_pixel.map(|[x, y]| command(x, y, &[]));
         for cause in self.causes.iter_mut().flatten() {
             cause.trace = cause.pixel.map(|[x, y]| command(x, y, &cause.under));
         }
@@ -372,6 +388,8 @@ pub fn wrong_size(student: &Image, expected: (usize, usize), settings: &Settings
         causes: None,
         flips: None,
         expected_size: Some([expected.0, expected.1]),
+        ray_pixel: None,
+        ray_trace: None,
     }
 }
 
@@ -528,7 +546,7 @@ pub fn report(
             }
         })
         .collect();
-    let (diagnosis, focus, causes, flips) = match scene {
+    let (diagnosis, focus, causes, flips, ray_pixel) = match scene {
         Some((scene, options)) if settings.diagnose => {
             let options = Options {
                 width,
@@ -538,9 +556,10 @@ pub fn report(
             let mask = (&beyond[..], differing_pixels);
             let (found, focus, causes, flips) =
                 causes::explain(scene, &options, rendered, student, levels, mask);
-            (Some(found), focus, Some(causes), Some(flips))
+            let ray_pixel = ray_pixel(&options, &causes);
+            (Some(found), focus, Some(causes), Some(flips), ray_pixel)
         }
-        _ => (None, None, None, None),
+        _ => (None, None, None, None, None),
     };
     Ok(Report {
         verdict,
@@ -563,7 +582,28 @@ pub fn report(
         causes,
         flips,
         expected_size: None,
+        ray_pixel,
+        ray_trace: None,
     })
+}
+
+/// Where the first cause in a ray or a colour was found under causes that move the
+/// pixels (rows or columns off, the image upside down): the pixel whose ray its pixel
+/// shows. A program with such a mistake traces each ray and writes it elsewhere, so its
+/// debug trace holds that ray under this pixel's label.
+fn ray_pixel(options: &Options, causes: &[causes::Cause]) -> Option<[usize; 2]> {
+    let cause = causes.iter().find(|c| !c.written_only())?;
+    let (under, [x, y]) = (&cause.under, cause.pixel?);
+    if under.is_empty() {
+        return None;
+    }
+    let moved = (under.iter())
+        .try_fold(*options, |o, &v| o.with_variant(v))
+        .ok()?;
+    let from = diagnose::shifted_from(options, &moved, under)?;
+    let (w, h) = (options.width, options.height);
+    let shown = from(output_row(y, h, false) * w + x)?;
+    Some(pixel_at(shown, w, h))
 }
 
 /// The groups of the differing pixels, from their count per object (`counts`, the

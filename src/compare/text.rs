@@ -397,16 +397,35 @@ pub fn diagnosis(report: &Report) -> Vec<String> {
             ));
         }
     }
+    // Where the causes lie only in how the image is written and explain every
+    // difference, a debug trace, ray by ray, agrees with the reference: said so, rather
+    // than a pixel to trace against it.
+    let explained: usize = causes.iter().map(|c| c.explains).sum();
+    if !causes.is_empty()
+        && causes.iter().all(|c| c.written_only())
+        && explained >= report.differing_pixels
+    {
+        line(
+            "the causes above change no ray and no colour, only where each pixel is written \
+             or how its colour becomes bytes: a debug trace of your program, ray by ray, \
+             agrees with the reference; look at the loop that writes the image and at the \
+             conversion to bytes (spec §4.1, §4.7)"
+                .to_string(),
+        );
+        return out;
+    }
     // The student's own program can say where it leaves the reference, number by
     // number: its DBG_ trace of a differing pixel, read with --against.
-    // The pixel named just above if there is one, else the worst.
+    // Under a row off, the ray that the first cause in a ray or a colour shows at its
+    // pixel (the program labels its trace by ray); else the pixel named just above if
+    // there is one, else the worst.
     let named = diagnosis
         .first()
         .filter(|best| best.subject.is_some() && best.agreement_after >= LOCALISED)
         .filter(|_| !causes.is_empty())
         .and_then(|best| best.trace.as_ref());
     let worst = report.worst.iter().find_map(|w| w.trace.as_ref());
-    if let Some(command) = named.or(worst)
+    if let Some(command) = report.ray_trace.as_ref().or(named).or(worst)
         && let Some((command, scene)) = command.split_once(" < ")
     {
         line(format!(

@@ -798,6 +798,55 @@ fn a_decision_found_under_an_image_written_upside_down_is_traced_on_its_row() {
         trace.contains("blocked by sphere (line 25)"),
         "{command}\n{trace}"
     );
+    // The pair's own command too (before, it named the unturned row).
+    let pair = &json["diagnosis"][0];
+    assert_eq!(pair["variants"][0], "upside-down", "{json:#}");
+    let command = pair["trace"].as_str().unwrap();
+    assert!(command.contains("--variant upside-down <"), "{command}");
+    // The program traces each ray right and writes it elsewhere: its debug trace holds
+    // that ray under the ray's own pixel, which the text report's --against command
+    // names, without the variant. The same world point as the cause's command.
+    let world = |trace: &str| trace.lines().nth(1).unwrap().to_string();
+    let (scene, student) = (scene.to_str().unwrap(), student.to_str().unwrap());
+    let output = super::common::run(&["compare", "--diagnose", scene, student], b"");
+    let text = String::from_utf8(output.stdout).unwrap();
+    let against = (text.lines())
+        .find_map(|line| {
+            line.split('`')
+                .find(|part| part.contains("--against dbg.txt"))
+        })
+        .unwrap_or_else(|| panic!("{text}"));
+    assert!(!against.contains("--variant"), "{against}");
+    let (plain, _) = against.split_once(" --against").unwrap();
+    let ours = traced(&format!("{plain} < {scene}"));
+    assert!(world(&ours).starts_with("world point"), "{ours}");
+    assert_eq!(world(&ours), world(&trace), "{against}");
+    assert!(ours.contains("blocked by sphere (line 25)"), "{ours}");
+}
+
+#[test]
+fn an_image_only_moved_is_not_sent_to_a_debug_trace() {
+    // A row off alone (made from the reference's bytes): the program's rays and colours
+    // are the reference's, so a debug trace would agree; the report says where to look
+    // instead of naming a pixel to trace against.
+    let dir = folder("causes-written-only");
+    let scene = example("shadows");
+    let reference = dir.join("reference.ppm");
+    render(&scene, SIZE, &[], &reference);
+    let (w, h, pixels) = read_ppm(&reference);
+    let mut moved = pixels[..w].to_vec();
+    moved.extend_from_slice(&pixels[..pixels.len() - w]);
+    let student = dir.join("row-off.ppm");
+    write_ppm(&student, (w, h), &moved);
+    let (scene, student) = (scene.to_str().unwrap(), student.to_str().unwrap());
+    let output = super::common::run(&["compare", "--diagnose", scene, student], b"");
+    let text = String::from_utf8(output.stdout).unwrap();
+    assert!(text.contains("1. --variant row-offset=1:"), "{text}");
+    assert!(
+        text.contains("the causes above change no ray and no colour"),
+        "{text}"
+    );
+    assert!(!text.contains("--against"), "{text}");
 }
 
 #[test]
