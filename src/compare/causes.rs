@@ -211,12 +211,20 @@ fn scene_causes(case: Case, mask: (&[u64], usize)) -> (Vec<Diagnosis>, Option<Fo
     }
     // 3. Jittered rays: the pixels that lie within what the reference takes inside their
     // pixel are explained by them; what remains is diagnosed again.
-    if let Some((cause, repaired)) = jitter_cause(scene, options, reference, student, levels, mask)
+    let own = |i: usize| Some(i);
+    if let Some((cause, repaired)) =
+        jitter_cause(scene, options, reference, student, levels, mask, &own)
     {
         // Jittered rays leave hardly a differing pixel outside what the reference takes
         // inside it; where they leave more, jitter stands only if another cause explains
         // the rest (an object moved by a pixel or two looks jittered on its shading).
         let clean = cause.explains as f64 >= NEARLY_ALL * cause.of as f64;
+        // Where it leaves more, jittered rays also written a row off may explain them all
+        // (in place, a row off lies within the pixel's footprint on half its edges).
+        if !clean && let Some(pair) = moved_jitter(case, mask, &found) {
+            causes.extend(pair);
+            return (found, focus, causes);
+        }
         // Under jittered rays a pixel a second mistake changes is that mistake's colour
         // seen from elsewhere in the pixel: on smooth shading, a few levels off.
         let levels = levels.max(JITTERED_LEVELS);
@@ -249,8 +257,99 @@ fn scene_causes(case: Case, mask: (&[u64], usize)) -> (Vec<Diagnosis>, Option<Fo
             return (found_after, focus_after, causes);
         }
     }
+    // 4. Jittered rays in an image also moved (a row off, say): jitter read against the
+    // reference moved as the best move says.
+    if let Some(pair) = moved_jitter(case, mask, &found) {
+        causes.extend(pair);
+        return (found, focus, causes);
+    }
     causes.extend(supported_causes);
     (found, focus, causes)
+}
+
+/// Jittered rays whose image is also moved (two of the real programs write every row one
+/// row off, and one of them jitters its rays too): the best single move among the
+/// catalogue's candidates `found`, and jitter read against the reference it moves, both
+/// stated where together they explain nearly every differing pixel (`mask`) and break
+/// almost nothing. The move explains the pixels the moved reference gives (those past
+/// its edge too), jitter those within what the moved reference takes inside the pixel;
+/// the move breaks the agreeing pixels that neither explains. Neither alone explains
+/// half: the move leaves every jittered pixel, and jitter read in place finds another
+/// pixel's ray.
+fn moved_jitter(
+    case: Case,
+    (mask, count): (&[u64], usize),
+    found: &[Diagnosis],
+) -> Option<[Cause; 2]> {
+    let (options, student, levels) = (case.options, case.student, case.levels);
+    let reference = &case.rendered.image;
+    let (first, pixel) = found.iter().find_map(|d| match d.variants[..] {
+        [v] if super::diagnose::SHIFTS.contains(&v.kind) => Some((v, d.pixel)),
+        _ => None,
+    })?;
+    let moved = options.with_variant(first).ok()?;
+    let from = super::diagnose::shifted_from(options, &moved, &[first])?;
+    let pixels = reference.pixels.len();
+    let differs = |i: usize| mask[i / 64] >> (i % 64) & 1 == 1;
+    let agrees_moved =
+        |i: usize| from(i).is_none_or(|j| within(reference.pixels[j], student.pixels[i], levels));
+    // What the moved reference leaves differing, and the pixels it fixes and breaks.
+    let mut left = vec![0u64; pixels.div_ceil(64)];
+    let (mut left_count, mut fixed, mut broken) = (0usize, 0usize, Vec::new());
+    for i in 0..pixels {
+        match (differs(i), agrees_moved(i)) {
+            (true, true) => fixed += 1,
+            (was, false) => {
+                left[i / 64] |= 1 << (i % 64);
+                left_count += 1;
+                if !was {
+                    broken.push(i);
+                }
+            }
+            (false, true) => {}
+        }
+    }
+    let left = (&left[..], left_count);
+    let (jitter, repaired) =
+        jitter_cause(case.scene, options, reference, student, levels, left, &from)?;
+    // Whether jitter explains pixel i: it was given the moved reference's bytes.
+    let repaired_at = |i: usize| student.pixels[i] != repaired.pixels[i];
+    let all = left_count <= JITTER_REPAIR;
+    let jittered = match all {
+        true => (0..pixels)
+            .filter(|&i| differs(i) && repaired_at(i))
+            .count(),
+        // Where only a sample was traced, jitter's share of it over what the move leaves.
+        false => jitter.explains * (left_count - broken.len()) / left_count.max(1),
+    };
+    let breaks = match all {
+        true => broken.iter().filter(|&&i| !repaired_at(i)).count(),
+        false => broken.len() - jitter.explains * broken.len() / left_count.max(1),
+    };
+    let explained = fixed + jittered;
+    if (explained as f64) < NEARLY_ALL * count as f64 || breaks * BREAKS_PER_FIX > explained {
+        return None;
+    }
+    let shift = Cause {
+        id: ids(&[first]),
+        variants: vec![first],
+        about: first.describe(),
+        explains: fixed,
+        of: count,
+        breaks,
+        subject: None,
+        pixel,
+        under: Vec::new(),
+        trace: None,
+    };
+    let jitter = Cause {
+        explains: jittered,
+        of: count - fixed,
+        breaks: 0,
+        under: vec![first],
+        ..jitter
+    };
+    Some([shift, jitter])
 }
 
 /// The decision flips of the differences `mask` of `student` left by the whole-image
@@ -643,6 +742,7 @@ fn jitter_cause(
     student: &Image,
     levels: u8,
     (mask, count): (&[u64], usize),
+    from: &dyn Fn(usize) -> Option<usize>,
 ) -> Option<(Cause, Image)> {
     let (w, h) = (options.width, options.height);
     let every = count.div_ceil(JITTER_PIXELS).max(1);
@@ -656,9 +756,12 @@ fn jitter_cause(
             frame.world(0, 1.min(h - 1)).y - origin.y,
             0.0,
         );
-        // The reference's bytes at the pixel's centre, corners and edges' middles, in turn.
+        // The reference's bytes at the centre, corners and edges' middles of the pixel
+        // whose ray the student's pixel i shows (its own, or where a move brings it from),
+        // in turn.
         let samples = |i: usize| {
-            let centre = frame.world(i % w, options.row_of(i / w));
+            let j = from(i).unwrap_or(i);
+            let centre = frame.world(j % w, options.row_of(j / w));
             SUB_PIXEL.iter().map(move |&(dx, dy)| {
                 frame.bytes_through(centre + glam::DVec3::new(dx * step.x, dy * step.y, 0.0))
             })
@@ -699,7 +802,11 @@ fn jitter_cause(
         // where the reference varies (a sample of the whole image), [`SPREAD`] differ.
         let spread = (w * h).div_ceil(SPREAD_PIXELS).max(1);
         let (mut varying, mut changed) = (0usize, 0usize);
-        for i in (0..w * h).step_by(spread).filter(|&i| varies(i)) {
+        let shown = |i: usize| from(i).is_some();
+        for i in (0..w * h)
+            .step_by(spread)
+            .filter(|&i| shown(i) && varies(i))
+        {
             varying += 1;
             changed += usize::from(differs(i));
         }
@@ -723,7 +830,7 @@ fn jitter_cause(
         };
         let mut repaired = student.clone();
         for &i in &repair {
-            repaired.pixels[i] = reference.pixels[i];
+            repaired.pixels[i] = reference.pixels[from(i).unwrap_or(i)];
         }
         let explains = match all {
             true => repair.len(),

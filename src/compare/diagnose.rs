@@ -996,7 +996,7 @@ impl Scorer<'_> {
 
 /// The variants that move the image's pixels without changing them: what a pixel shows
 /// is the reference's pixel from elsewhere ([`shifted_from`]).
-const SHIFTS: [Kind; 3] = [Kind::RowOffset, Kind::ColumnOffset, Kind::UpsideDown];
+pub(super) const SHIFTS: [Kind; 3] = [Kind::RowOffset, Kind::ColumnOffset, Kind::UpsideDown];
 
 /// The place of a byte rule's [`Agreeing`] among the three: none, round-bytes, scale-256.
 fn rule_slot(rule: Option<Kind>) -> usize {

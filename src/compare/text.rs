@@ -338,6 +338,22 @@ pub fn diagnosis(report: &Report) -> Vec<String> {
                 thousands(breaks)
             ));
         }
+        // Jitter read against the image the first moves: found together, from the images.
+        if let [first, second, ..] = causes
+            && !super::causes::supported(first.explains, first.of, first.breaks)
+            && second.variants.is_empty()
+            && !second.under.is_empty()
+            && second.under == first.variants
+        {
+            line(format!(
+                "  (1 and 2 hide each other's pixels: the move leaves every jittered pixel, and \
+                 jitter read in place meets another pixel's ray; together they explain {} of \
+                 {} and break {})",
+                thousands(first.explains + second.explains),
+                thousands(first.of),
+                thousands(first.breaks + second.breaks)
+            ));
+        }
         // The best, when it is one record's edit that explains nearly everything, in
         // words a student acts on.
         if let Some(best) = diagnosis.first()

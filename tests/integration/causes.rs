@@ -138,6 +138,52 @@ fn jittered_rays_are_named_as_jitter_and_not_as_a_scene_mistake() {
 }
 
 #[test]
+fn jittered_rays_written_a_row_off_are_both_named() {
+    // Two of the real class's programs write every row one row off, and one of them also
+    // jitters every camera ray: the image is neither the reference moved nor jittered in
+    // place. Drawn by the tiny tracer (not the program's code), on the tube and a course
+    // scene.
+    let dir = folder("causes-row-jitter");
+    let mut scenes = vec![example("tube")];
+    scenes.extend(course("a04"));
+    let size = (SIZE.0 as usize, SIZE.1 as usize);
+    for scene in scenes {
+        let text = std::fs::read_to_string(&scene).unwrap();
+        let student = dir.join("row-jitter.ppm");
+        let mistakes = rule(|m| (m.row_offset, m.jitter) = (1, Some(11)));
+        write_ppm(&student, size, &tiny_tracer(&text, size, mistakes));
+        let (found, json) = causes(&scene, &student);
+        assert_eq!(
+            found,
+            ["row-offset=1", "jitter"],
+            "{}: {json:#}",
+            scene.display()
+        );
+        // Jitter is read against the moved reference, and traced under the move.
+        let jitter = &json["causes"][1];
+        assert_eq!(
+            jitter["under"],
+            serde_json::json!(["row-offset=1"]),
+            "{jitter}"
+        );
+        let (first, second) = (&json["causes"][0], jitter);
+        let count = |cause: &Value, key: &str| cause[key].as_u64().unwrap();
+        let explained = count(first, "explains") + count(second, "explains");
+        let differing = count(&json, "differing_pixels");
+        assert!(explained * 20 >= differing * 19, "{json:#}");
+        assert_eq!(count(first, "of"), differing);
+        // Where the move alone explains under half, the text says why it is a cause, with
+        // the pair's counts (read back with the thousands' commas taken out).
+        let (scene, student) = (scene.to_str().unwrap(), student.to_str().unwrap());
+        let output = super::common::run(&["compare", "--diagnose", scene, student], b"");
+        let text = String::from_utf8(output.stdout).unwrap().replace(',', "");
+        let together = format!("together they explain {explained} of {differing}");
+        let alone = 2 * count(first, "explains") >= differing;
+        assert_eq!(text.contains(&together), !alone, "{text}");
+    }
+}
+
+#[test]
 fn two_mistakes_are_both_named_the_whole_image_s_first() {
     let dir = folder("causes-two");
     let mut cases = vec![
@@ -495,6 +541,16 @@ fn an_independent_tracer_s_mistakes_are_each_named() {
                 ..jitter
             },
             vec!["jitter", "no-shadow@25"],
+        ),
+        // The real program: every row one row off, every ray jittered.
+        (
+            "row-jitter",
+            text.clone(),
+            Mistakes {
+                row_offset: 1,
+                ..jitter
+            },
+            vec!["row-offset=1", "jitter"],
         ),
     ];
     for (name, read, mistakes, expected) in cases {
