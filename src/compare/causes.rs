@@ -191,7 +191,7 @@ pub struct Case<'a> {
 /// The catalogue's causes of the differences `mask` of `student` left once the whole
 /// image's bytes are undone (the scene's variants, jittered rays), with the candidates
 /// found and where the differences concentrate.
-fn scene_causes(case: Case, mask: (&[u64], usize)) -> (Vec<Diagnosis>, Option<Focus>, Vec<Cause>) {
+fn scene_causes(case: Case, mask: (&[u64], usize)) -> SceneCauses {
     let Case {
         scene,
         options,
@@ -225,36 +225,9 @@ fn scene_causes(case: Case, mask: (&[u64], usize)) -> (Vec<Diagnosis>, Option<Fo
             causes.extend(pair);
             return (found, focus, causes);
         }
-        // Under jittered rays a pixel a second mistake changes is that mistake's colour
-        // seen from elsewhere in the pixel: on smooth shading, a few levels off.
-        let levels = levels.max(JITTERED_LEVELS);
-        let (mask, count) = differing(reference, &repaired, levels);
-        if count == 0 {
-            causes.push(cause);
-            return (Vec::new(), None, causes);
-        }
-        // The pixels jitter explains may lie on a second mistake's pixels too: they count
-        // neither for nor against it.
-        let mut explained = vec![0u64; mask.len()];
-        for (i, (&r, &s)) in reference.pixels.iter().zip(&repaired.pixels).enumerate() {
-            if r == s && student.pixels[i] != s {
-                explained[i / 64] |= 1 << (i % 64);
-            }
-        }
-        let (found_after, focus_after) = with_mask(
-            scene,
-            options,
-            rendered,
-            &repaired,
-            levels,
-            (&mask, count),
-            &explained,
-        );
-        let rest = stated(&found_after, count);
-        if clean || !rest.is_empty() {
-            causes.push(cause);
-            causes.extend(rest);
-            return (found_after, focus_after, causes);
+        if let Some(after) = after_jitter(case, cause, &repaired, clean) {
+            causes.extend(after.2);
+            return (after.0, after.1, causes);
         }
     }
     // 4. Jittered rays in an image also moved (a row off, say): jitter read against the
@@ -263,8 +236,154 @@ fn scene_causes(case: Case, mask: (&[u64], usize)) -> (Vec<Diagnosis>, Option<Fo
         causes.extend(pair);
         return (found, focus, causes);
     }
+    // 5. Jittered rays with a second mistake that changes more pixels than jitter leaves
+    // within the reference's footprints: jitter read against the image of the best
+    // candidate, then the rest diagnosed again against the reference.
+    match jitter_through(case, mask, &found) {
+        Some(Through::First(cause, repaired)) => {
+            if let Some(after) = after_jitter(case, cause, &repaired, false) {
+                causes.extend(after.2);
+                return (after.0, after.1, causes);
+            }
+        }
+        Some(Through::Second(pair)) => {
+            causes.extend(pair);
+            return (found, focus, causes);
+        }
+        None => {}
+    }
     causes.extend(supported_causes);
     (found, focus, causes)
+}
+
+/// What remains once jittered rays are undone (`repaired`: the student's image with the
+/// pixels `cause` explains given the bytes of the image jitter was read against),
+/// diagnosed again at the tolerance jitter leaves: the candidates, where they
+/// concentrate, and the causes, jitter first; `None` where nothing is stated beside a
+/// jitter that is not `clean` (that leaves more than a twentieth).
+fn after_jitter(case: Case, cause: Cause, repaired: &Image, clean: bool) -> Option<SceneCauses> {
+    let (rendered, student) = (case.rendered, case.student);
+    let reference = &rendered.image;
+    // Under jittered rays a pixel a second mistake changes is that mistake's colour seen
+    // from elsewhere in the pixel: on smooth shading, a few levels off.
+    let levels = case.levels.max(JITTERED_LEVELS);
+    let (mask, count) = differing(reference, repaired, levels);
+    if count == 0 {
+        return Some((Vec::new(), None, vec![cause]));
+    }
+    // The pixels jitter explains may lie on a second mistake's pixels too: they count
+    // neither for nor against it.
+    let mut explained = vec![0u64; mask.len()];
+    for (i, (&r, &s)) in reference.pixels.iter().zip(&repaired.pixels).enumerate() {
+        if r == s && student.pixels[i] != s {
+            explained[i / 64] |= 1 << (i % 64);
+        }
+    }
+    let mask = (&mask[..], count);
+    let (scene, options) = (case.scene, case.options);
+    let (found, focus) = with_mask(scene, options, rendered, repaired, levels, mask, &explained);
+    let rest = stated(&found, count);
+    (clean || !rest.is_empty()).then(|| {
+        let causes = std::iter::once(cause).chain(rest).collect();
+        (found, focus, causes)
+    })
+}
+
+/// The candidates, where the differences concentrate, and the causes.
+type SceneCauses = (Vec<Diagnosis>, Option<Focus>, Vec<Cause>);
+
+/// What jittered rays read against a candidate's image give ([`jitter_through`]).
+enum Through {
+    /// Jitter, counted on the pixels it gives the reference's bytes, and the student's
+    /// image with the pixels it explains given the candidate's, for the second mistake to
+    /// be found in.
+    First(Cause, Image),
+    /// The candidate, then jitter: where jitter's own pixels are too few to state it
+    /// first (the candidate changes nearly every pixel, as square-falloff does).
+    Second([Cause; 2]),
+}
+
+/// Jittered rays read against the image of the best candidate of one scene variant
+/// among `found` (no move: [`moved_jitter`] reads those), where a second mistake changes
+/// so many pixels that jitter in place explains under half. Jitter is stated first where
+/// it gives the reference's bytes to at least a twentieth of the differing pixels
+/// (`mask`); else the candidate first, with the pixels its image gives, and jitter the
+/// rest within what that image takes inside the pixel, where together they explain
+/// nearly all and break almost nothing.
+fn jitter_through(
+    case: Case,
+    (mask, count): (&[u64], usize),
+    found: &[Diagnosis],
+) -> Option<Through> {
+    let (options, student, levels) = (case.options, case.student, case.levels);
+    let reference = &case.rendered.image;
+    let variants = &found.first()?.variants;
+    let moves = |v: &Variant| v.kind.row().site == Site::Camera;
+    if variants.iter().any(moves) {
+        return None;
+    }
+    let with = (variants.iter())
+        .try_fold(*options, |o, &v| o.with_variant(v))
+        .ok()?;
+    let image = render::render(case.scene, &with, |_| {});
+    let differs = differing(&image, student, levels);
+    let differs = (&differs.0[..], differs.1);
+    let own = |i: usize| Some(i);
+    let (cause, repaired) =
+        jitter_cause(case.scene, &with, &image, student, levels, differs, &own)?;
+    // Jitter's own pixels: those it gives back the reference's bytes.
+    let explains = (0..reference.pixels.len())
+        .filter(|&i| mask[i / 64] >> (i % 64) & 1 == 1)
+        .filter(|&i| repaired.pixels[i] != student.pixels[i])
+        .filter(|&i| repaired.pixels[i] == reference.pixels[i])
+        .count();
+    if explains as f64 >= (1.0 - NEARLY_ALL) * count as f64 {
+        let cause = Cause {
+            explains,
+            of: count,
+            ..cause
+        };
+        return Some(Through::First(cause, repaired));
+    }
+    // The candidate's own pixels, those jitter explains of the rest, and the agreeing
+    // pixels neither gives.
+    let differs = |i: usize| mask[i / 64] >> (i % 64) & 1 == 1;
+    let given = |i: usize| within(image.pixels[i], student.pixels[i], levels);
+    let jittered = |i: usize| repaired.pixels[i] != student.pixels[i];
+    let pixels = 0..reference.pixels.len();
+    let fixed = pixels.clone().filter(|&i| differs(i) && given(i)).count();
+    let rest = (pixels.clone())
+        .filter(|&i| differs(i) && !given(i) && jittered(i))
+        .count();
+    let breaks = (pixels.clone())
+        .filter(|&i| !differs(i) && !given(i) && !jittered(i))
+        .count();
+    let together = fixed + rest;
+    if (together as f64) < NEARLY_ALL * count as f64 || breaks * BREAKS_PER_FIX > together {
+        return None;
+    }
+    let best = &found[0];
+    let first = Cause {
+        id: ids(variants),
+        variants: variants.clone(),
+        about: (variants.iter().map(|v| v.describe()))
+            .collect::<Vec<_>>()
+            .join("; "),
+        explains: fixed,
+        of: count,
+        breaks,
+        subject: best.subject.clone(),
+        pixel: best.pixel,
+        under: Vec::new(),
+        trace: None,
+    };
+    let second = Cause {
+        explains: rest,
+        of: count - fixed,
+        breaks: 0,
+        ..cause
+    };
+    Some(Through::Second([first, second]))
 }
 
 /// Jittered rays whose image is also moved (two of the real programs write every row one
@@ -480,7 +599,12 @@ fn stated(found: &[Diagnosis], differing: usize) -> Vec<Cause> {
     };
     let each = |alone: usize| supported(both.saturating_sub(alone), differing - alone, both_broken);
     if !supported(both, differing, both_broken) || !each(fixed) || !each(other) {
-        return Vec::new();
+        // Else the second alone, where the pixels support it: a partner that adds a few
+        // pixels (round-bytes at a tolerance) hides no cause that explains nearly all.
+        return match supported(other, differing, other_broken) {
+            true => vec![cause(second, (other, differing, other_broken), &[])],
+            false => Vec::new(),
+        };
     }
     // A move before a rule of the bytes (the rows are put back, then the bytes are
     // read); else the one that explains more alone first.

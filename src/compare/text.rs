@@ -319,39 +319,42 @@ pub fn diagnosis(report: &Report) -> Vec<String> {
             line(text);
         }
         // A pair stated together because each hides the other's pixels: its first is no
-        // cause alone, and the report says why it is one.
+        // cause alone, and the report says why it is one, with the pair's counts: the
+        // catalogue's pair's where it is one, else the two causes' summed.
         if let [first, second, ..] = causes
             && !super::causes::supported(first.explains, first.of, first.breaks)
-            && let Some(pair) = diagnosis.iter().find(|d| {
+        {
+            let pair = diagnosis.iter().find(|d| {
                 let both = first.variants.iter().chain(&second.variants);
                 d.variants.len() == 2
                     && both.clone().count() == 2
                     && both.into_iter().all(|v| d.variants.contains(v))
-            })
-            && let (Some(explains), Some(breaks)) = (pair.explains, pair.breaks)
-        {
+            });
+            let (explains, breaks) = match pair.and_then(|p| Some((p.explains?, p.breaks?))) {
+                Some(counts) => counts,
+                None => (
+                    first.explains + second.explains,
+                    first.breaks + second.breaks,
+                ),
+            };
+            // Jitter read against the image the first moves: found together, from the
+            // images.
+            let moved_jitter = second.variants.is_empty()
+                && !second.under.is_empty()
+                && second.under == first.variants;
+            let why = match moved_jitter {
+                true => {
+                    "the move leaves every jittered pixel, and jitter read in place meets \
+                         another pixel's ray"
+                }
+                false => "neither alone makes half of them agree without breaking others",
+            };
             line(format!(
-                "  (1 and 2 hide each other's pixels: neither alone makes half of them agree \
-                 without breaking others; together they explain {} of {} and break {})",
+                "  (1 and 2 hide each other's pixels: {why}; together they explain {} of {} and \
+                 break {})",
                 thousands(explains),
                 thousands(first.of),
                 thousands(breaks)
-            ));
-        }
-        // Jitter read against the image the first moves: found together, from the images.
-        if let [first, second, ..] = causes
-            && !super::causes::supported(first.explains, first.of, first.breaks)
-            && second.variants.is_empty()
-            && !second.under.is_empty()
-            && second.under == first.variants
-        {
-            line(format!(
-                "  (1 and 2 hide each other's pixels: the move leaves every jittered pixel, and \
-                 jitter read in place meets another pixel's ray; together they explain {} of \
-                 {} and break {})",
-                thousands(first.explains + second.explains),
-                thousands(first.of),
-                thousands(first.breaks + second.breaks)
             ));
         }
         // The best, when it is one record's edit that explains nearly everything, in

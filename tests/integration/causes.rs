@@ -542,6 +542,27 @@ fn an_independent_tracer_s_mistakes_are_each_named() {
             },
             vec!["jitter", "no-shadow@25"],
         ),
+        // Jittered rays with a mistake that changes more pixels than jitter leaves within
+        // the reference's footprints: no shadow rays (jitter first), and the light's
+        // falloff squared, which changes nearly every pixel (the falloff first).
+        (
+            "jitter-no-shadows",
+            text.clone(),
+            Mistakes {
+                no_shadows: true,
+                ..jitter
+            },
+            vec!["jitter", "no-shadows"],
+        ),
+        (
+            "jitter-square-falloff",
+            text.clone(),
+            Mistakes {
+                square_falloff: true,
+                ..jitter
+            },
+            vec!["square-falloff", "jitter"],
+        ),
         // The real program: every row one row off, every ray jittered.
         (
             "row-jitter",
