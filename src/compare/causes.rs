@@ -853,6 +853,24 @@ const SUB_PIXEL: [(f64, f64); 9] = [
     (0.5, 0.0),
 ];
 
+/// The stride of the jitter check's sample of the whole image (`w` by `h`), about
+/// [`SPREAD_PIXELS`] pixels: the least at or above (w·h)/SPREAD_PIXELS that shares no
+/// factor with the width. A stride the width divides (4096 at 4096x4096) would sample one
+/// column, and one that shares a factor with it, a few.
+fn spread_stride(w: usize, h: usize) -> usize {
+    let gcd = |mut a: usize, mut b: usize| {
+        while b != 0 {
+            (a, b) = (b, a % b);
+        }
+        a
+    };
+    let mut spread = (w * h).div_ceil(SPREAD_PIXELS).max(1);
+    while gcd(spread, w) != 1 {
+        spread += 1;
+    }
+    spread
+}
+
 /// Whether the camera rays look jittered: at least half the differing pixels lie within
 /// what the reference takes anywhere inside their pixel (its value at the pixel's
 /// corners, edges and centre, per channel, within the tolerance), and a good share of the
@@ -924,7 +942,7 @@ fn jitter_cause(
         // Jittered rays change the pixels wherever the reference varies inside a pixel, all
         // over the image; a moved object changes them only within its reach. Of the pixels
         // where the reference varies (a sample of the whole image), [`SPREAD`] differ.
-        let spread = (w * h).div_ceil(SPREAD_PIXELS).max(1);
+        let spread = spread_stride(w, h);
         let (mut varying, mut changed) = (0usize, 0usize);
         let shown = |i: usize| from(i).is_some();
         for i in (0..w * h)
@@ -975,6 +993,23 @@ fn jitter_cause(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_jitter_check_s_sample_spans_the_columns() {
+        // Its pixels' columns: at 4096x4096 the plain stride, 4096, is one column.
+        let columns = |w: usize, h: usize| {
+            let spread = spread_stride(w, h);
+            let mut seen: Vec<usize> = (0..w * h).step_by(spread).map(|i| i % w).collect();
+            seen.sort_unstable();
+            seen.dedup();
+            (spread, seen.len())
+        };
+        assert_eq!(columns(4096, 4096), (4097, 4096));
+        // 640x480's 75 shares 5 with the width: 77, every column.
+        assert_eq!(columns(640, 480), (77, 640));
+        // 320x240's 19 shares nothing with it, and is kept.
+        assert_eq!(columns(320, 240).0, 19);
+    }
 
     #[test]
     fn a_shifted_image_s_pixels_are_the_reference_s_from_where_they_come() {
