@@ -11,11 +11,11 @@
 //! it explains at least half of the differing pixels left and breaks almost none
 //! ([`supported`]); otherwise the report says no cause explains them.
 
-use super::diagnose::{Diagnosis, Focus, with_mask};
+use super::diagnose::{Diagnosis, Focus, SHIFTS, with_mask};
 use super::flips::{Flip, flips};
-use super::{Reference, differing, for_each_set, within};
+use super::{Reference, differing, for_each_set, is_set, within};
 use crate::render::variant::Site;
-use crate::render::{self, Image, Kind, Options, Variant};
+use crate::render::{self, Image, Options, Variant};
 use crate::scene::Scene;
 use serde::Serialize;
 
@@ -80,14 +80,11 @@ impl Cause {
     /// colours the reference's: rows, columns or axes moved, or the bytes' rule. A
     /// student's debug trace, ray by ray, then agrees with the reference.
     pub fn written_only(&self) -> bool {
-        let writes = [Kind::RowOffset, Kind::ColumnOffset, Kind::UpsideDown];
-        let bytes = [Kind::RoundBytes, Kind::Scale256];
+        let written = |v: &Variant| SHIFTS.contains(&v.kind) || v.kind.row().site == Site::Bytes;
         match self.variants.is_empty() {
             // Found from the two images: all but jitter move or recode the bytes.
             true => self.id != JITTER,
-            false => {
-                (self.variants.iter()).all(|v| writes.contains(&v.kind) || bytes.contains(&v.kind))
-            }
+            false => self.variants.iter().all(written),
         }
     }
 }
@@ -212,29 +209,24 @@ fn scene_causes(case: Case, mask: (&[u64], usize)) -> SceneCauses {
     // 3. Jittered rays: the pixels that lie within what the reference takes inside their
     // pixel are explained by them; what remains is diagnosed again.
     let own = |i: usize| Some(i);
-    if let Some((cause, repaired)) =
-        jitter_cause(scene, options, reference, student, levels, mask, &own)
-    {
-        // Jittered rays leave hardly a differing pixel outside what the reference takes
-        // inside it; where they leave more, jitter stands only if another cause explains
-        // the rest (an object moved by a pixel or two looks jittered on its shading).
-        let clean = cause.explains as f64 >= NEARLY_ALL * cause.of as f64;
-        // Where it leaves more, jittered rays also written a row off may explain them all
-        // (in place, a row off lies within the pixel's footprint on half its edges).
-        if !clean && let Some(pair) = moved_jitter(case, mask, &found) {
-            causes.extend(pair);
-            return (found, focus, causes);
-        }
-        if let Some(after) = after_jitter(case, cause, &repaired, clean) {
-            causes.extend(after.2);
-            return (after.0, after.1, causes);
-        }
-    }
-    // 4. Jittered rays in an image also moved (a row off, say): jitter read against the
-    // reference moved as the best move says.
-    if let Some(pair) = moved_jitter(case, mask, &found) {
+    let in_place = jitter_cause(scene, options, reference, student, levels, mask, &own);
+    // Jittered rays leave hardly a differing pixel outside what the reference takes
+    // inside it; where they leave more, jitter stands only if another cause explains the
+    // rest (an object moved by a pixel or two looks jittered on its shading).
+    let clean =
+        (in_place.as_ref()).is_some_and(|(c, _)| c.explains as f64 >= NEARLY_ALL * c.of as f64);
+    // 4. Where jitter in place is not found or leaves more, jittered rays also written a
+    // row off (in place, a row off lies within the pixel's footprint on half its edges):
+    // jitter read against the reference moved as the best move says.
+    if !clean && let Some(pair) = moved_jitter(case, mask, &found) {
         causes.extend(pair);
         return (found, focus, causes);
+    }
+    if let Some((cause, repaired)) = in_place
+        && let Some(after) = after_jitter(case, cause, &repaired, clean)
+    {
+        causes.extend(after.2);
+        return (after.0, after.1, causes);
     }
     // 5. Jittered rays with a second mistake that changes more pixels than jitter leaves
     // within the reference's footprints: jitter read against the image of the best
@@ -322,20 +314,25 @@ fn jitter_through(
     if variants.iter().any(moves) {
         return None;
     }
-    let with = (variants.iter())
-        .try_fold(*options, |o, &v| o.with_variant(v))
-        .ok()?;
+    let with = options.with_variants(variants).ok()?;
     let image = render::render(case.scene, &with, |_| {});
-    let differs = differing(&image, student, levels);
-    let differs = (&differs.0[..], differs.1);
+    let (off, off_count) = differing(&image, student, levels);
     let own = |i: usize| Some(i);
-    let (cause, repaired) =
-        jitter_cause(case.scene, &with, &image, student, levels, differs, &own)?;
+    let (cause, repaired) = jitter_cause(
+        case.scene,
+        &with,
+        &image,
+        student,
+        levels,
+        (&off, off_count),
+        &own,
+    )?;
+    let differs = |i: usize| is_set(mask, i);
+    let jittered = |i: usize| repaired.pixels[i] != student.pixels[i];
+    let pixels = 0..reference.pixels.len();
     // Jitter's own pixels: those it gives back the reference's bytes.
-    let explains = (0..reference.pixels.len())
-        .filter(|&i| mask[i / 64] >> (i % 64) & 1 == 1)
-        .filter(|&i| repaired.pixels[i] != student.pixels[i])
-        .filter(|&i| repaired.pixels[i] == reference.pixels[i])
+    let explains = (pixels.clone())
+        .filter(|&i| differs(i) && jittered(i) && repaired.pixels[i] == reference.pixels[i])
         .count();
     if explains as f64 >= (1.0 - NEARLY_ALL) * count as f64 {
         let cause = Cause {
@@ -347,17 +344,15 @@ fn jitter_through(
     }
     // The candidate's own pixels, those jitter explains of the rest, and the agreeing
     // pixels neither gives.
-    let differs = |i: usize| mask[i / 64] >> (i % 64) & 1 == 1;
     let given = |i: usize| within(image.pixels[i], student.pixels[i], levels);
-    let jittered = |i: usize| repaired.pixels[i] != student.pixels[i];
-    let pixels = 0..reference.pixels.len();
-    let fixed = pixels.clone().filter(|&i| differs(i) && given(i)).count();
-    let rest = (pixels.clone())
-        .filter(|&i| differs(i) && !given(i) && jittered(i))
-        .count();
-    let breaks = (pixels.clone())
-        .filter(|&i| !differs(i) && !given(i) && !jittered(i))
-        .count();
+    let (fixed, rest, breaks) = pixels.fold((0, 0, 0), |(f, r, b), i| {
+        match (differs(i), given(i), jittered(i)) {
+            (true, true, _) => (f + 1, r, b),
+            (true, false, true) => (f, r + 1, b),
+            (false, false, false) => (f, r, b + 1),
+            _ => (f, r, b),
+        }
+    });
     let together = fixed + rest;
     if (together as f64) < NEARLY_ALL * count as f64 || breaks * BREAKS_PER_FIX > together {
         return None;
@@ -403,27 +398,25 @@ fn moved_jitter(
     let (options, student, levels) = (case.options, case.student, case.levels);
     let reference = &case.rendered.image;
     let (first, pixel) = found.iter().find_map(|d| match d.variants[..] {
-        [v] if super::diagnose::SHIFTS.contains(&v.kind) => Some((v, d.pixel)),
+        [v] if SHIFTS.contains(&v.kind) => Some((v, d.pixel)),
         _ => None,
     })?;
     let moved = options.with_variant(first).ok()?;
     let from = super::diagnose::shifted_from(options, &moved, &[first])?;
     let pixels = reference.pixels.len();
-    let differs = |i: usize| mask[i / 64] >> (i % 64) & 1 == 1;
+    let differs = |i: usize| is_set(mask, i);
     let agrees_moved =
         |i: usize| from(i).is_none_or(|j| within(reference.pixels[j], student.pixels[i], levels));
-    // What the moved reference leaves differing, and the pixels it fixes and breaks.
+    // What the moved reference leaves differing, and how many pixels it fixes and breaks.
     let mut left = vec![0u64; pixels.div_ceil(64)];
-    let (mut left_count, mut fixed, mut broken) = (0usize, 0usize, Vec::new());
+    let (mut left_count, mut fixed, mut broken) = (0usize, 0usize, 0usize);
     for i in 0..pixels {
         match (differs(i), agrees_moved(i)) {
             (true, true) => fixed += 1,
             (was, false) => {
                 left[i / 64] |= 1 << (i % 64);
                 left_count += 1;
-                if !was {
-                    broken.push(i);
-                }
+                broken += usize::from(!was);
             }
             (false, true) => {}
         }
@@ -433,17 +426,20 @@ fn moved_jitter(
         jitter_cause(case.scene, options, reference, student, levels, left, &from)?;
     // Whether jitter explains pixel i: it was given the moved reference's bytes.
     let repaired_at = |i: usize| student.pixels[i] != repaired.pixels[i];
-    let all = left_count <= JITTER_REPAIR;
-    let jittered = match all {
+    // Of what the move leaves, the differing pixels jitter explains and the agreeing ones
+    // it does not: counted where every one was traced, else jitter's share of the sample.
+    let (jittered, breaks) = match left_count <= JITTER_REPAIR {
         true => (0..pixels)
-            .filter(|&i| differs(i) && repaired_at(i))
-            .count(),
-        // Where only a sample was traced, jitter's share of it over what the move leaves.
-        false => jitter.explains * (left_count - broken.len()) / left_count.max(1),
-    };
-    let breaks = match all {
-        true => broken.iter().filter(|&&i| !repaired_at(i)).count(),
-        false => broken.len() - jitter.explains * broken.len() / left_count.max(1),
+            .filter(|&i| is_set(left.0, i))
+            .fold((0, 0), |(j, b), i| match (differs(i), repaired_at(i)) {
+                (true, true) => (j + 1, b),
+                (false, false) => (j, b + 1),
+                _ => (j, b),
+            }),
+        false => {
+            let share = |n: usize| jitter.explains * n / left_count.max(1);
+            (share(left_count - broken), broken - share(broken))
+        }
     };
     let explained = fixed + jittered;
     if (explained as f64) < NEARLY_ALL * count as f64 || breaks * BREAKS_PER_FIX > explained {
@@ -485,7 +481,7 @@ fn decision_flips(case: Case, mask: (&[u64], usize), causes: &[Cause]) -> Vec<Fl
     if moves.is_empty() {
         return flips(case, mask, &[]);
     }
-    let Ok(moved) = (moves.iter()).try_fold(*options, |options, v| options.with_variant(*v)) else {
+    let Ok(moved) = options.with_variants(&moves) else {
         return Vec::new();
     };
     // The pixels that still differ from the reference moved so: where the moves only
@@ -663,7 +659,7 @@ fn swapped_cause(
         ("the file's rows and columns", |i, n| (i % n) * n + i / n),
     ];
     let may_miss = count - (NEARLY_ALL * count as f64).ceil() as usize;
-    let differs = |i: usize| mask[i / 64] >> (i % 64) & 1 == 1;
+    let differs = |i: usize| is_set(mask, i);
     for (what, from) in ways {
         let follows = |i: usize| within(reference.pixels[from(i, n)], student.pixels[i], levels);
         let mut missed = 0;
@@ -747,7 +743,7 @@ fn bytes_cause(
     let breaks = |follows: &dyn Fn([u8; 3], [u8; 3]) -> bool| {
         let pairs = reference.pixels.iter().zip(&student.pixels);
         (pairs.enumerate())
-            .filter(|&(i, (&r, &s))| mask[i / 64] >> (i % 64) & 1 == 0 && !follows(r, s))
+            .filter(|&(i, (&r, &s))| !is_set(mask, i) && !follows(r, s))
             .count()
     };
     // The first differing pixel `follows` explains, as `trace` takes it.
@@ -888,7 +884,7 @@ fn jitter_cause(
 ) -> Option<(Cause, Image)> {
     let (w, h) = (options.width, options.height);
     let every = count.div_ceil(JITTER_PIXELS).max(1);
-    let differs = |i: usize| mask[i / 64] >> (i % 64) & 1 == 1;
+    let differs = |i: usize| is_set(mask, i);
     let differing_pixels = || (0..w * h).filter(|&i| differs(i));
     let looked: Vec<usize> = differing_pixels().step_by(every).collect();
     render::tracing(scene, options, |frame| {

@@ -24,7 +24,7 @@
 //! that render is worth making.
 
 use super::Reach;
-use super::{Reference, within};
+use super::{Reference, is_set, within};
 use crate::render::trace::object_name;
 use crate::render::variant::{Needs, Row, Scope, output_row};
 use crate::render::{self, Image, Kind, Options, VARIANTS, Variant};
@@ -259,9 +259,7 @@ pub(crate) fn with_mask(
     // The agreement a candidate would have, from its bytes on sample `k`; and the sample's
     // differing pixels it explains.
     let estimate_on = |k: usize, variants: &[Variant]| -> Option<(f64, Vec<usize>)> {
-        let options = variants
-            .iter()
-            .try_fold(*options, |o, &v| o.with_variant(v).ok())?;
+        let options = options.with_variants(variants).ok()?;
         let (sample, split) = &samples[k];
         let (sample_d, sample_a) = sample.split_at(*split);
         let bytes = match reach(variants) {
@@ -330,7 +328,7 @@ pub(crate) fn with_mask(
             for (i, path) in rendered.paths.iter().enumerate() {
                 if path.may_hit(object) {
                     hit += 1;
-                    differ += (mask[i / 64] >> (i % 64) & 1) as usize;
+                    differ += usize::from(is_set(mask, i));
                 }
             }
             differ as f64 / hit.max(1) as f64
@@ -756,7 +754,7 @@ impl Agreeing {
     }
 
     fn at(&self, i: usize) -> bool {
-        self.mask[i / 64] >> (i % 64) & 1 == 1
+        is_set(&self.mask, i)
     }
 }
 
@@ -785,12 +783,10 @@ impl Scorer<'_> {
     /// the reference's (under their byte rule). `None` when they cannot apply together.
     fn counts(&self, variants: &[Variant]) -> Option<Counts> {
         let (scene, rendered) = (self.scene, self.rendered);
-        let options = variants
-            .iter()
-            .try_fold(*self.options, |o, &v| o.with_variant(v).ok())?;
+        let options = self.options.with_variants(variants).ok()?;
         let pixels = rendered.image.pixels.len();
         let agrees = |i: usize, b: [u8; 3]| within(b, self.student.pixels[i], self.levels);
-        let was_differing = |i: usize| self.mask[i / 64] >> (i % 64) & 1 == 1;
+        let was_differing = |i: usize| is_set(self.mask, i);
         let mut counts = Counts::default();
         let ignored = |i: usize| {
             self.ignored
@@ -980,7 +976,7 @@ impl Scorer<'_> {
         }
         let reach = Reach::of(scene, self.given, &rest)?;
         let from = shifted_from(self.options, options, &moves)?;
-        let under_rest = (rest.iter()).try_fold(*self.options, |o, &v| o.with_variant(v).ok())?;
+        let under_rest = self.options.with_variants(&rest).ok()?;
         let mut moved = vec![[0u8; 3]; pixels];
         reached(scene, &under_rest, (reach, rendered), 0..pixels, |j, b| {
             moved[j] = b
@@ -1532,10 +1528,7 @@ mod tests {
             }
             let pixels = student.pixels.len();
             for variants in candidates {
-                let Some(with) = variants
-                    .iter()
-                    .try_fold(options, |o, &v| o.with_variant(v).ok())
-                else {
+                let Ok(with) = options.with_variants(&variants) else {
                     continue;
                 };
                 if Reach::of(&scene, &[], &variants).is_none() {

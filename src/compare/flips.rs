@@ -16,7 +16,7 @@
 
 use super::causes::{BREAKS_PER_FIX, Case, HALF};
 use super::retrace::{recorded, render_forced_each};
-use super::{for_each_set, light_name, pixel_at, within};
+use super::{for_each_set, is_set, light_name, pixel_at, within};
 use crate::render::PatternNote;
 use crate::render::record::{Event, LightStep, Recorder};
 use crate::render::trace::object_name;
@@ -521,7 +521,7 @@ impl Examined<'_> {
         let pixels = student.pixels.len();
         let aligned = self.under.is_empty() && rendered.paths.len() == pixels;
         let may = |i: usize| !aligned || flips.iter().all(|f| rendered.paths[i].may_take(f));
-        let agrees = |i: usize| self.mask[i / 64] >> (i % 64) & 1 == 0;
+        let agrees = |i: usize| !is_set(self.mask, i);
         // Counted first, then sampled: a list of them all would be 8 bytes a pixel.
         let candidates = || (0..pixels).filter(|&i| agrees(i) && may(i));
         let stride = candidates().count().div_ceil(BREAK_SAMPLE).max(1);

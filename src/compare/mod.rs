@@ -332,6 +332,12 @@ fn for_each_set(mask: &[u64], mut each: impl FnMut(usize)) {
     }
 }
 
+/// Whether pixel `i` is set in `mask` (bit i % 64 of word i / 64).
+#[inline]
+pub(crate) fn is_set(mask: &[u64], i: usize) -> bool {
+    mask[i / 64] >> (i % 64) & 1 == 1
+}
+
 /// The share of pixels (0 to 1) whose channels all differ by at most `levels`.
 pub fn agreement(reference: &Image, student: &Image, levels: u8) -> f64 {
     let within = (reference.pixels.iter().zip(&student.pixels))
@@ -597,9 +603,7 @@ fn ray_pixel(options: &Options, causes: &[causes::Cause]) -> Option<[usize; 2]> 
     if under.is_empty() {
         return None;
     }
-    let moved = (under.iter())
-        .try_fold(*options, |o, &v| o.with_variant(v))
-        .ok()?;
+    let moved = options.with_variants(under).ok()?;
     let from = diagnose::shifted_from(options, &moved, under)?;
     let (w, h) = (options.width, options.height);
     let shown = from(output_row(y, h, false) * w + x)?;

@@ -51,9 +51,7 @@ pub fn trace_command(
     let mut choices = choices.clone();
     choices.variants.extend(under);
     // The options the reference took `under` with: the scene's, where they conflict.
-    let traced = (under.iter())
-        .try_fold(*options, |o, &v| o.with_variant(v))
-        .unwrap_or(*options);
+    let traced = options.with_variants(under).unwrap_or(*options);
     // The output row that holds (x, y), then the pixel row traced there.
     let y = traced.row_of(output_row(y.min(h - 1), h, false));
     let flags = choices.flags();

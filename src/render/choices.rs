@@ -93,8 +93,7 @@ impl Choices {
             show: self.show,
             ..Options::new(width, height)
         };
-        let options = (self.variants.iter())
-            .try_fold(options, |options, &variant| options.with_variant(variant))?;
+        let options = options.with_variants(&self.variants)?;
         super::variant::check_scopes(&options, scene)?;
         Ok(options)
     }

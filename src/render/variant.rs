@@ -700,6 +700,11 @@ impl Variants {
 }
 
 impl Options {
+    /// These options with each of `variants` applied in turn ([`Options::with_variant`]).
+    pub fn with_variants(&self, variants: &[Variant]) -> Result<Options, ChoiceError> {
+        (variants.iter()).try_fold(*self, |options, &variant| options.with_variant(variant))
+    }
+
     /// These options with `variant` applied; an error when a variant already applied
     /// replaces the same rule for the same records (two byte rules, two divisors, two
     /// kernels, two MAX_DISTs, shadow-epsilon twice for one object).

@@ -27,6 +27,13 @@ fn causes(scene: &Path, student: &Path) -> (Vec<String>, Value) {
     (ids, json)
 }
 
+/// The text report of `compare --diagnose` for `student` against `scene`.
+fn diagnosis_text(scene: &Path, student: &Path) -> String {
+    let (scene, student) = (scene.to_str().unwrap(), student.to_str().unwrap());
+    let output = super::common::run(&["compare", "--diagnose", scene, student], b"");
+    String::from_utf8(output.stdout).unwrap()
+}
+
 /// A binary PPM of `pixels`, written here.
 fn write_ppm(path: &Path, (w, h): (usize, usize), pixels: &[[u8; 3]]) {
     let mut bytes = format!("P6\n{w} {h}\n255\n").into_bytes();
@@ -174,9 +181,7 @@ fn jittered_rays_written_a_row_off_are_both_named() {
         assert_eq!(count(first, "of"), differing);
         // Where the move alone explains under half, the text says why it is a cause, with
         // the pair's counts (read back with the thousands' commas taken out).
-        let (scene, student) = (scene.to_str().unwrap(), student.to_str().unwrap());
-        let output = super::common::run(&["compare", "--diagnose", scene, student], b"");
-        let text = String::from_utf8(output.stdout).unwrap().replace(',', "");
+        let text = diagnosis_text(&scene, &student).replace(',', "");
         let together = format!("together they explain {explained} of {differing}");
         let alone = 2 * count(first, "explains") >= differing;
         assert_eq!(text.contains(&together), !alone, "{text}");
@@ -884,9 +889,7 @@ fn a_decision_found_under_an_image_written_upside_down_is_traced_on_its_row() {
     // that ray under the ray's own pixel, which the text report's --against command
     // names, without the variant. The same world point as the cause's command.
     let world = |trace: &str| trace.lines().nth(1).unwrap().to_string();
-    let (scene, student) = (scene.to_str().unwrap(), student.to_str().unwrap());
-    let output = super::common::run(&["compare", "--diagnose", scene, student], b"");
-    let text = String::from_utf8(output.stdout).unwrap();
+    let text = diagnosis_text(&scene, &student);
     let against = (text.lines())
         .find_map(|line| {
             line.split('`')
@@ -895,7 +898,7 @@ fn a_decision_found_under_an_image_written_upside_down_is_traced_on_its_row() {
         .unwrap_or_else(|| panic!("{text}"));
     assert!(!against.contains("--variant"), "{against}");
     let (plain, _) = against.split_once(" --against").unwrap();
-    let ours = traced(&format!("{plain} < {scene}"));
+    let ours = traced(&format!("{plain} < {}", scene.display()));
     assert!(world(&ours).starts_with("world point"), "{ours}");
     assert_eq!(world(&ours), world(&trace), "{against}");
     assert!(ours.contains("blocked by sphere (line 25)"), "{ours}");
@@ -915,9 +918,7 @@ fn an_image_only_moved_is_not_sent_to_a_debug_trace() {
     moved.extend_from_slice(&pixels[..pixels.len() - w]);
     let student = dir.join("row-off.ppm");
     write_ppm(&student, (w, h), &moved);
-    let (scene, student) = (scene.to_str().unwrap(), student.to_str().unwrap());
-    let output = super::common::run(&["compare", "--diagnose", scene, student], b"");
-    let text = String::from_utf8(output.stdout).unwrap();
+    let text = diagnosis_text(&scene, &student);
     assert!(text.contains("1. --variant row-offset=1:"), "{text}");
     assert!(
         text.contains("the causes above change no ray and no colour"),
@@ -1073,9 +1074,7 @@ fn a_row_off_with_its_bytes_rounded_is_named_so_and_not_jitter() {
         assert_eq!(found, ["row-offset=1", rule], "{json:#}");
         // The row offset alone is no cause (it breaks more than it explains): the text
         // says why it is stated, with the pair's counts.
-        let [d05, student] = [&d05, &student].map(|p| p.to_str().unwrap());
-        let output = super::common::run(&["compare", "--diagnose", d05, student], b"");
-        let text = String::from_utf8(output.stdout).unwrap();
+        let text = diagnosis_text(&d05, &student);
         let pair = &json["diagnosis"][0];
         let said = (text.lines())
             .find(|l| l.contains("(1 and 2 hide each other's pixels: neither alone makes half"))
