@@ -4,9 +4,9 @@
 //! Whole-image causes come first, since they hide everything else: a square image's axes
 //! swapped, every byte some levels off or the channels in another order (found from the
 //! two images alone), then the catalogue's variants (a row or column off, the image
-//! upside down, a scene rule: [`super::diagnose`]), and where none explains nearly all,
-//! jittered camera rays (each differing pixel against what the reference takes anywhere
-//! inside its pixel). Each
+//! upside down, a scene rule: [`super::diagnose`]), and jittered camera rays (each
+//! differing pixel against what the reference takes anywhere inside its pixel, or where
+//! a candidate explains nearly all, what it leaves against the candidate's image). Each
 //! cause found is undone and what remains is diagnosed again. A cause is stated only if
 //! it explains at least half of the differing pixels left and breaks almost none
 //! ([`supported`]); otherwise the report says no cause explains them.
@@ -203,6 +203,17 @@ fn scene_causes(case: Case, mask: (&[u64], usize)) -> SceneCauses {
     let supported_causes = stated(&found, mask.1);
     let explained: usize = supported_causes.iter().map(|c| c.explains).sum();
     if explained as f64 >= NEARLY_ALL * mask.1 as f64 {
+        // Jittered rays beside a mistake that changes far more pixels (an object hidden):
+        // what the candidate leaves is read for jitter against the candidate's image.
+        let left = mask.1 - explained;
+        if left > 0
+            && let Some(Through::Second([_, jitter])) = jitter_through(case, mask, &found)
+            && supported(jitter.explains, jitter.of, 0)
+        {
+            causes.extend(supported_causes);
+            causes.push(jitter);
+            return (found, focus, causes);
+        }
         causes.extend(supported_causes);
         return (found, focus, causes);
     }

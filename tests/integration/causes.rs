@@ -189,6 +189,31 @@ fn jittered_rays_written_a_row_off_are_both_named() {
 }
 
 #[test]
+fn jittered_rays_beside_a_mistake_that_changes_nearly_every_differing_pixel_are_both_named() {
+    // The tube's floor hidden from the camera rays changes nearly every differing pixel:
+    // it alone explains over 95 % of them, and the jittered edges of what is left are the
+    // rest. Drawn by the tiny tracer (not the program's code); the floor is its first
+    // object.
+    let dir = folder("causes-hidden-jitter");
+    let size = (SIZE.0 as usize, SIZE.1 as usize);
+    let scene = example("tube");
+    let text = std::fs::read_to_string(&scene).unwrap();
+    let student = dir.join("hidden-jitter.ppm");
+    let mistakes = rule(|m| (m.hidden, m.jitter) = (Some(0), Some(5)));
+    write_ppm(&student, size, &tiny_tracer(&text, size, mistakes));
+    let (found, json) = causes(&scene, &student);
+    assert_eq!(found, ["hidden@4", "jitter"], "{json:#}");
+    // The floor explains nearly all; jitter is counted on what it leaves.
+    let (first, second) = (&json["causes"][0], &json["causes"][1]);
+    let count = |cause: &Value, key: &str| cause[key].as_u64().unwrap();
+    let differing = count(&json, "differing_pixels");
+    assert!(count(first, "explains") * 20 >= differing * 19, "{json:#}");
+    let left = differing - count(first, "explains");
+    assert_eq!(count(second, "of"), left, "{json:#}");
+    assert!(count(second, "explains") * 2 >= left, "{json:#}");
+}
+
+#[test]
 fn two_mistakes_are_both_named_the_whole_image_s_first() {
     let dir = folder("causes-two");
     let mut cases = vec![

@@ -763,6 +763,8 @@ fn an_edit_of_one_record_is_diagnosed_as_itself() {
 pub(super) struct Mistakes {
     /// An object (its index) left out of the shadow rays.
     pub no_shadow: Option<usize>,
+    /// An object (its index) left out of the camera rays: they pass through it.
+    pub hidden: Option<usize>,
     /// Output row r holds the pixel traced at y = H-1-r+N (`rows - y` for N = 1).
     pub row_offset: usize,
     /// Each camera ray through a point drawn within half a pixel of the pixel's, from
@@ -950,7 +952,8 @@ pub(super) fn tiny_tracer(text: &str, (w, h): (usize, usize), mistakes: Mistakes
             let d = unit(sub(p, eye));
             let mut best: Option<(usize, f64)> = None;
             for (i, object) in objects.iter().enumerate() {
-                if let Some(t) = hit(&object.2, eye, d)
+                if Some(i) != mistakes.hidden
+                    && let Some(t) = hit(&object.2, eye, d)
                     && best.is_none_or(|(_, b)| t < b)
                 {
                     best = Some((i, t));
