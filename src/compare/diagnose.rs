@@ -35,6 +35,9 @@ use serde::Serialize;
 /// The longest MAX_DIST `--diagnose` considers: 30 times the course's 32.
 pub const PROBE_LIMIT: f64 = 1000.0;
 
+/// The variants of one continuous parameter, estimated from the pixels at round values.
+const CONTINUOUS: [Kind; 3] = [Kind::FarClip, Kind::ZTolerance, Kind::ShadowEpsilon];
+
 /// How many differing pixels, and as many agreeing ones, a candidate is tried on: every
 /// candidate on the small sample first, the best [`SHORTLIST`] on the large one.
 const SAMPLE: [usize; 2] = [128, 512];
@@ -417,51 +420,35 @@ pub(crate) fn with_mask(
     // that among equals the one a student would write is kept (30, not 29.7). Values on
     // either side of the student's may agree alike (each gets part of the pixels right):
     // the range searched spans every value that ties with the best.
-    for kind in [Kind::FarClip, Kind::ZTolerance, Kind::ShadowEpsilon] {
+    for kind in CONTINUOUS {
         let of_kind = |v: &Variant| v.kind == kind && v.line.is_none();
         let tried: Vec<(f64, f64)> = (first_round.iter())
             .filter(|(v, _)| v.len() == 1 && of_kind(&v[0]))
             .filter_map(|(v, agreement)| Some((v[0].value?, *agreement)))
             .collect();
-        let Some(best) = tried.iter().map(|t| t.1).reduce(f64::max) else {
-            continue;
-        };
-        let tied = || tried.iter().filter(|t| t.1 == best).map(|t| t.0);
-        let (first, last) = (tied().fold(f64::MAX, f64::min), tied().fold(0.0, f64::max));
-        let mut values: Vec<f64> = (candidates.iter())
+        let values: Vec<f64> = (candidates.iter())
             .filter(|v| of_kind(v))
             .filter_map(|v| v.value)
             .collect();
-        values.sort_by(f64::total_cmp);
-        let below = values.iter().rev().find(|&&v| v < first).copied();
-        let above = values.iter().find(|&&v| v > last).copied();
-        // Past the values tried: as far as the next of them would lie (the epsilons go
-        // by tens).
-        let step = if kind == Kind::ShadowEpsilon {
-            10.0
-        } else {
-            2.0
-        };
-        let (low, high) = (below.unwrap_or(first / step), above.unwrap_or(last * step));
-        let near = (round_values_between(low, high).into_iter())
-            .map(|value| Variant {
-                value: Some(value),
-                ..Variant::of(kind)
-            })
-            .collect();
+        let near = values_near(kind, &tried, values);
         try_near(near, &mut first_round, &mut candidates);
     }
     shortlist(&mut first_round);
+    // The pixel to show `variants` by, of the sample's differing pixels they fix (in pixel
+    // order): the first not among `not` (sorted), and not one an offset leaves uncovered,
+    // which shows what a buffer held, not the ray.
+    let pixel_of = |variants: &[Variant], fixed: &[usize], not: &[usize]| {
+        let shown = uncovered(variants, reference.width, reference.height);
+        let covered = || fixed.iter().filter(|&&i| !shown(i));
+        (covered().find(|i| not.binary_search(i).is_err()))
+            .or(covered().next())
+            .or(fixed.first())
+            .copied()
+    };
     let mut estimated: Vec<Tried> = (first_round.into_iter())
         .filter_map(|(variants, _)| {
             let (agreement, fixed) = estimate(&variants)?;
-            // A pixel the offset leaves uncovered shows what a buffer held, not the ray.
-            let pixel = {
-                let shown = uncovered(&variants, reference.width, reference.height);
-                (fixed.iter().find(|&&i| !shown(i)))
-                    .or(fixed.first())
-                    .copied()
-            };
+            let pixel = pixel_of(&variants, &fixed, &[]);
             (agreement > before).then_some(Tried {
                 pixel,
                 variants,
@@ -477,7 +464,7 @@ pub(crate) fn with_mask(
     // sample it fixes where `pixel`.
     let alone = |one: Variant, pixel: bool| {
         let (agreement, counts) = exact(&[one])?;
-        let fixed = || estimate(&[one]).and_then(|(_, fixed)| fixed.first().copied());
+        let fixed = || estimate(&[one]).and_then(|(_, fixed)| pixel_of(&[one], &fixed, &[]));
         Some(Tried {
             variants: vec![one],
             agreement,
@@ -597,6 +584,62 @@ pub(crate) fn with_mask(
             // alone (a whole-image mistake may hide the other's pixels).
             if !found.iter().any(|t| t.variants == [partner]) {
                 found.extend(alone(partner, false));
+            }
+        }
+    }
+    // A continuous parameter estimated alone in an image also moved is the value whose
+    // edge the move leaves in place (a far clip of 10 in an image a row off is found as 9,
+    // or 6): where the best candidate holds one and a move agrees better than the image
+    // as it is, the parameter is estimated again under the move.
+    let continuous = |v: &&Variant| CONTINUOUS.contains(&v.kind) && v.line.is_none();
+    if let Some(m) = best_moved
+        && let Some(top) = found.first().filter(|t| t.agreement < 1.0).cloned()
+        && let Some(&value) = top.variants.iter().find(continuous)
+    {
+        let kind = value.kind;
+        let under = |v: Variant| vec![m, v];
+        // Its first values, and the one found alone.
+        let firsts = (other_values().into_iter())
+            .filter(|v| v.kind == kind)
+            .chain([value]);
+        let mut round: Vec<(Vec<Variant>, f64)> = firsts
+            .filter_map(|v| Some((under(v), estimate_on(0, &under(v))?.0)))
+            .collect();
+        let tried: Vec<(f64, f64)> = (round.iter())
+            .filter_map(|(v, agreement)| Some((v[1].value?, *agreement)))
+            .collect();
+        let values = tried.iter().map(|t| t.0).collect();
+        round.extend(
+            (values_near(kind, &tried, values).into_iter())
+                .filter_map(|v| Some((under(v), estimate_on(0, &under(v))?.0))),
+        );
+        shortlist(&mut round);
+        let best = (round.into_iter())
+            .filter_map(|(pair, _)| Some((estimate(&pair)?, pair)))
+            .max_by(|a, b| a.0.0.total_cmp(&b.0.0).then(std::cmp::Ordering::Greater));
+        if let Some(((estimated, fixed), pair)) = best
+            && estimated > top.agreement
+            && let Some((agreement, counts)) = exact(&pair)
+            && agreement > top.agreement
+        {
+            // The pair's pixel: one the move alone leaves, so that it shows the parameter.
+            let alone_fixed = estimate(&[m]).map_or(Vec::new(), |(_, fixed)| fixed);
+            let pixel = pixel_of(&pair, &fixed, &alone_fixed);
+            found.insert(
+                0,
+                Tried {
+                    variants: pair.clone(),
+                    agreement,
+                    max_dist_range: None,
+                    pixel,
+                    counts: Some(counts),
+                },
+            );
+            // Each alone too, for the causes' order.
+            for one in pair {
+                if !found.iter().any(|t| t.variants == [one]) {
+                    found.extend(alone(one, true));
+                }
             }
         }
     }
@@ -1125,6 +1168,35 @@ fn round_values_between(low: f64, high: f64) -> Vec<f64> {
         }
     }
     out
+}
+
+/// The values of a continuous parameter of `kind` to try next, given those `tried` (each
+/// with its agreement) among `values` (those tried so far): none where none was tried,
+/// else the round values between the neighbours of those that tie with the best (up to
+/// the next step past the last), the roundest first.
+fn values_near(kind: Kind, tried: &[(f64, f64)], mut values: Vec<f64>) -> Vec<Variant> {
+    let Some(best) = tried.iter().map(|t| t.1).reduce(f64::max) else {
+        return Vec::new();
+    };
+    let tied = || tried.iter().filter(|t| t.1 == best).map(|t| t.0);
+    let (first, last) = (tied().fold(f64::MAX, f64::min), tied().fold(0.0, f64::max));
+    values.sort_by(f64::total_cmp);
+    let below = values.iter().rev().find(|&&v| v < first).copied();
+    let above = values.iter().find(|&&v| v > last).copied();
+    // Past the values tried: as far as the next of them would lie (the epsilons go by
+    // tens).
+    let step = if kind == Kind::ShadowEpsilon {
+        10.0
+    } else {
+        2.0
+    };
+    let (low, high) = (below.unwrap_or(first / step), above.unwrap_or(last * step));
+    (round_values_between(low, high).into_iter())
+        .map(|value| Variant {
+            value: Some(value),
+            ..Variant::of(kind)
+        })
+        .collect()
 }
 
 /// How many round values a continuous parameter is tried at between two of its first.

@@ -266,11 +266,14 @@ pub fn diagnosis(report: &Report) -> Vec<String> {
                 .to_string(),
         );
     } else {
-        // The catalogue's candidate, where the causes are its variants: its agreement.
+        // The catalogue's candidate, where the causes are its variants (in any order): its
+        // agreement.
         let variants: Vec<Variant> = causes.iter().flat_map(|c| c.variants.clone()).collect();
         let whole_image_first = causes.first().is_some_and(|c| c.variants.is_empty());
+        let same =
+            |d: &[Variant]| d.len() == variants.len() && d.iter().all(|v| variants.contains(v));
         let found = (diagnosis.iter())
-            .find(|d| d.variants == variants)
+            .find(|d| same(&d.variants))
             .filter(|_| !whole_image_first);
         if let Some(found) = found {
             line(format!(

@@ -214,6 +214,37 @@ fn jittered_rays_beside_a_mistake_that_changes_nearly_every_differing_pixel_are_
 }
 
 #[test]
+fn a_far_clip_in_an_image_a_row_off_is_found_at_its_value() {
+    // Estimated alone in an image a row off, a far clip is the value whose edge the row
+    // leaves in place (9, 7 or 6 for 10): it is estimated again under the move. Drawn by
+    // the tiny tracer (not the program's code).
+    let dir = folder("causes-row-clip");
+    let size = (SIZE.0 as usize, SIZE.1 as usize);
+    for scene in ["planes", "shadows", "tube"].map(example) {
+        let text = std::fs::read_to_string(&scene).unwrap();
+        let student = dir.join("row-clip.ppm");
+        let mistakes = rule(|m| (m.row_offset, m.far_clip) = (1, Some(10.0)));
+        write_ppm(&student, size, &tiny_tracer(&text, size, mistakes));
+        let (mut found, json) = causes(&scene, &student);
+        // In either order: the one that explains more alone first, or the move where it
+        // alone explains half.
+        found.sort();
+        assert_eq!(
+            found,
+            ["far-clip=10", "row-offset=1"],
+            "{}: {json:#}",
+            scene.display()
+        );
+        // Together they explain every differing pixel.
+        let count = |cause: &Value, key: &str| cause[key].as_u64().unwrap();
+        let explained: u64 = (json["causes"].as_array().unwrap().iter())
+            .map(|c| count(c, "explains"))
+            .sum();
+        assert_eq!(explained, count(&json, "differing_pixels"), "{json:#}");
+    }
+}
+
+#[test]
 fn two_mistakes_are_both_named_the_whole_image_s_first() {
     let dir = folder("causes-two");
     let mut cases = vec![
