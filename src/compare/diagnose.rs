@@ -610,7 +610,8 @@ pub(crate) fn with_mask(
     // A continuous parameter estimated alone in an image also moved is the value whose
     // edge the move leaves in place (a far clip of 10 in an image a row off is found as 9,
     // or 6): where the best candidate holds one and a move agrees better than the image
-    // as it is, the parameter is estimated again under the move.
+    // as it is, the parameter is estimated again under the move, and the move's best
+    // partner is looked for.
     let continuous = |v: &&Variant| CONTINUOUS.contains(&v.kind) && v.line.is_none();
     if let Some(m) = best_moved
         && let Some(top) = found.first().filter(|t| t.agreement < 1.0).cloned()
@@ -634,8 +635,14 @@ pub(crate) fn with_mask(
                 .filter_map(|v| Some((under(v), estimate_on(0, &under(v))?.0))),
         );
         shortlist(&mut round);
-        let best = (round.into_iter())
-            .filter_map(|(pair, _)| Some((estimate(&pair)?, pair)))
+        let by_value = (round.into_iter()).filter_map(|(pair, _)| Some((estimate(&pair)?, pair)));
+        // And the move's own best partner, looked for on the pixels it leaves: the
+        // parameter may stand for another mistake (a far object hidden, as a far clip).
+        let partners = (candidates.iter().copied()).filter(|p| p.id() != m.id());
+        let by_partner = (scorer.left(m))
+            .and_then(|left| scorer.best_partner(m, partners.collect(), &left))
+            .map(|(partner, estimated)| (estimated, vec![m, partner]));
+        let best = (by_value.chain(by_partner))
             .max_by(|a, b| a.0.0.total_cmp(&b.0.0).then(std::cmp::Ordering::Greater));
         if let Some(((estimated, fixed), pair)) = best
             && estimated > top.agreement

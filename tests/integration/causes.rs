@@ -270,6 +270,12 @@ fn two_mistakes_are_both_named_the_whole_image_s_first() {
         let ids = vec!["row-offset=1", "stopped-at@21"];
         cases.push((a04, "stopped-at@21,row-offset=1", ids));
     }
+    // The far wall hidden, in an image one row off: a far clip hides nearly the same
+    // pixels, and was the best single; the move's own partner is the wall.
+    if let Some(d06) = course("d06") {
+        let ids = vec!["hidden@8", "row-offset=1"];
+        cases.push((d06, "row-offset=1,hidden@8", ids));
+    }
     for (scene, variants, expected) in cases {
         let student = dir.join("student.ppm");
         render(&scene, SIZE, &["--variant", variants], &student);
