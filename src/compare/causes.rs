@@ -405,7 +405,7 @@ fn moved_jitter(
     case: Case,
     (mask, count): (&[u64], usize),
     found: &[Diagnosis],
-) -> Option<[Cause; 2]> {
+) -> Option<Vec<Cause>> {
     let (options, student, levels) = (case.options, case.student, case.levels);
     let reference = &case.rendered.image;
     let (first, pixel) = found.iter().find_map(|d| match d.variants[..] {
@@ -453,6 +453,18 @@ fn moved_jitter(
         }
     };
     let explained = fixed + jittered;
+    // A third mistake in what the two leave (the course program's cylinder, in a program
+    // that also writes a row off and jitters its rays), where every pixel was traced.
+    let third = match (explained as f64) < NEARLY_ALL * count as f64 && left_count <= JITTER_REPAIR
+    {
+        true => {
+            let rest = (mask, count - explained);
+            third_cause(case, first, &repaired, rest, &repaired_at)
+        }
+        false => None,
+    };
+    let explained = explained + third.as_ref().map_or(0, |c| c.explains);
+    let breaks = breaks + third.as_ref().map_or(0, |c| c.breaks);
     if (explained as f64) < NEARLY_ALL * count as f64 || breaks * BREAKS_PER_FIX > explained {
         return None;
     }
@@ -475,7 +487,86 @@ fn moved_jitter(
         under: vec![first],
         ..jitter
     };
-    Some([shift, jitter])
+    Some([shift, jitter].into_iter().chain(third).collect())
+}
+
+/// A third cause, after a move (`first`) and jittered rays read against the reference it
+/// moves: the catalogue's partner of the move in `repaired` (the student's image with the
+/// pixels jitter explains given the moved reference's bytes, `jittered`), diagnosed at the
+/// tolerance jitter leaves with those pixels counting neither way; counted on what the
+/// two leave (the differing pixels of `mask` that neither explains, `rest` of them),
+/// against the image the move and the partner render. Where the pixels support it.
+fn third_cause(
+    case: Case,
+    first: Variant,
+    repaired: &Image,
+    (mask, rest): (&[u64], usize),
+    jittered: &dyn Fn(usize) -> bool,
+) -> Option<Cause> {
+    let (scene, options, student) = (case.scene, case.options, case.student);
+    let reference = &case.rendered.image;
+    let levels = case.levels.max(JITTERED_LEVELS);
+    let (left, left_count) = differing(reference, repaired, levels);
+    let pixels = reference.pixels.len();
+    let mut ignored = vec![0u64; pixels.div_ceil(64)];
+    for i in (0..pixels).filter(|&i| jittered(i)) {
+        ignored[i / 64] |= 1 << (i % 64);
+    }
+    let (found, _) = with_mask(
+        scene,
+        options,
+        case.rendered,
+        repaired,
+        levels,
+        (&left, left_count),
+        &ignored,
+    );
+    // The move's partner, not a move itself.
+    let second = found.iter().find_map(|d| match d.variants[..] {
+        [a, b] if a == first && !SHIFTS.contains(&b.kind) => Some((b, d)),
+        [a, b] if b == first && !SHIFTS.contains(&a.kind) => Some((a, d)),
+        _ => None,
+    });
+    let (second, diagnosis) = second?;
+    let both = options.with_variants(&[first, second]).ok()?;
+    let image = render::render(scene, &both, |_| {});
+    let moved = options.with_variant(first).ok()?;
+    let from = super::diagnose::shifted_from(options, &moved, &[first])?;
+    // What the two leave: differing, not within the moved reference (at the tolerance,
+    // as the move was counted), not jittered.
+    let agrees_moved = |i: usize| {
+        let at = |j: usize| within(reference.pixels[j], student.pixels[i], case.levels);
+        from(i).is_none_or(at)
+    };
+    let given = |i: usize| within(image.pixels[i], student.pixels[i], levels);
+    let (mut explains, mut breaks, mut pixel) = (0usize, 0usize, None);
+    for i in (0..pixels).filter(|&i| !jittered(i)) {
+        let left_by_two = is_set(mask, i) && !agrees_moved(i);
+        match (left_by_two, given(i)) {
+            (true, true) => {
+                explains += 1;
+                pixel = pixel.or(Some(i));
+            }
+            (false, false) if agrees_moved(i) => breaks += 1,
+            _ => {}
+        }
+    }
+    if !supported(explains, rest, breaks) {
+        return None;
+    }
+    let (w, h) = (reference.width, reference.height);
+    Some(Cause {
+        id: ids(&[second]),
+        variants: vec![second],
+        about: second.describe(),
+        explains,
+        of: rest,
+        breaks,
+        subject: diagnosis.subject.clone().filter(|_| second.line.is_some()),
+        pixel: pixel.map(|i| super::pixel_at(i, w, h)),
+        under: vec![first],
+        trace: None,
+    })
 }
 
 /// The decision flips of the differences `mask` of `student` left by the whole-image

@@ -189,19 +189,41 @@ fn jittered_rays_written_a_row_off_are_both_named() {
 }
 
 #[test]
+fn a_row_off_jittered_rays_and_the_course_program_s_cylinder_are_all_named() {
+    // The real program that writes every row one row off and jitters its rays was built
+    // on the course program, whose cylinder keeps its smaller root in bounds even when it
+    // is behind the ray's base. Drawn by the tiny tracer (not the program's code) on the
+    // tube: the move and jitter leave the shadow rays that start inside the tube.
+    let dir = folder("causes-row-jitter-root");
+    let mistakes = rule(|m| (m.row_offset, m.jitter, m.behind_root) = (1, Some(3), true));
+    let (found, json) = drawn(&dir, &example("tube"), mistakes);
+    assert_eq!(found, ["row-offset=1", "jitter", "behind-root"], "{json:#}");
+    let listed = json["causes"].as_array().unwrap();
+    let count = |cause: &Value, key: &str| cause[key].as_u64().unwrap();
+    // Each counted on what the ones before it leave; together nearly all.
+    let differing = count(&json, "differing_pixels");
+    let mut left = differing;
+    for cause in listed {
+        assert_eq!(count(cause, "of"), left, "{cause}");
+        left -= count(cause, "explains");
+    }
+    assert!(left * 20 <= differing, "{json:#}");
+    // The cylinder's pixel is traced under the move: the ray the student's pixel shows.
+    let root = &listed[2];
+    assert_eq!(root["under"], serde_json::json!(["row-offset=1"]), "{root}");
+    let trace = root["trace"].as_str().unwrap();
+    assert!(trace.contains("--variant row-offset=1"), "{trace}");
+}
+
+#[test]
 fn jittered_rays_beside_a_mistake_that_changes_nearly_every_differing_pixel_are_both_named() {
     // The tube's floor hidden from the camera rays changes nearly every differing pixel:
     // it alone explains over 95 % of them, and the jittered edges of what is left are the
     // rest. Drawn by the tiny tracer (not the program's code); the floor is its first
     // object.
     let dir = folder("causes-hidden-jitter");
-    let size = (SIZE.0 as usize, SIZE.1 as usize);
-    let scene = example("tube");
-    let text = std::fs::read_to_string(&scene).unwrap();
-    let student = dir.join("hidden-jitter.ppm");
     let mistakes = rule(|m| (m.hidden, m.jitter) = (Some(0), Some(5)));
-    write_ppm(&student, size, &tiny_tracer(&text, size, mistakes));
-    let (found, json) = causes(&scene, &student);
+    let (found, json) = drawn(&dir, &example("tube"), mistakes);
     assert_eq!(found, ["hidden@4", "jitter"], "{json:#}");
     // The floor explains nearly all; jitter is counted on what it leaves.
     let (first, second) = (&json["causes"][0], &json["causes"][1]);
@@ -219,13 +241,9 @@ fn a_far_clip_in_an_image_a_row_off_is_found_at_its_value() {
     // leaves in place (9, 7 or 6 for 10): it is estimated again under the move. Drawn by
     // the tiny tracer (not the program's code).
     let dir = folder("causes-row-clip");
-    let size = (SIZE.0 as usize, SIZE.1 as usize);
     for scene in ["planes", "shadows", "tube"].map(example) {
-        let text = std::fs::read_to_string(&scene).unwrap();
-        let student = dir.join("row-clip.ppm");
         let mistakes = rule(|m| (m.row_offset, m.far_clip) = (1, Some(10.0)));
-        write_ppm(&student, size, &tiny_tracer(&text, size, mistakes));
-        let (mut found, json) = causes(&scene, &student);
+        let (mut found, json) = drawn(&dir, &scene, mistakes);
         // In either order: the one that explains more alone first, or the move where it
         // alone explains half.
         found.sort();
@@ -648,6 +666,16 @@ fn an_independent_tracer_s_mistakes_are_each_named() {
         let (found, json) = causes(&scene, &student);
         assert_eq!(found, expected, "{name}: {json:#}");
     }
+}
+
+/// `scene` drawn by the tiny tracer with `mistakes` into `dir`, and diagnosed: the ids of
+/// the causes stated, and the report.
+fn drawn(dir: &Path, scene: &Path, mistakes: Mistakes) -> (Vec<String>, Value) {
+    let size = (SIZE.0 as usize, SIZE.1 as usize);
+    let text = std::fs::read_to_string(scene).unwrap();
+    let student = dir.join("student.ppm");
+    write_ppm(&student, size, &tiny_tracer(&text, size, mistakes));
+    causes(scene, &student)
 }
 
 /// `mistakes` with `set` applied: one switch of the tiny tracer, or two.
