@@ -617,32 +617,39 @@ pub(crate) fn with_mask(
         && let Some(top) = found.first().filter(|t| t.agreement < 1.0).cloned()
         && let Some(&value) = top.variants.iter().find(continuous)
     {
-        let kind = value.kind;
-        let under = |v: Variant| vec![m, v];
-        // Its first values, and the one found alone.
-        let firsts = (other_values().into_iter())
-            .filter(|v| v.kind == kind)
-            .chain([value]);
-        let mut round: Vec<(Vec<Variant>, f64)> = firsts
-            .filter_map(|v| Some((under(v), estimate_on(0, &under(v))?.0)))
-            .collect();
-        let tried: Vec<(f64, f64)> = (round.iter())
-            .filter_map(|(v, agreement)| Some((v[1].value?, *agreement)))
-            .collect();
-        let values = tried.iter().map(|t| t.0).collect();
-        round.extend(
-            (values_near(kind, &tried, values).into_iter())
-                .filter_map(|v| Some((under(v), estimate_on(0, &under(v))?.0))),
-        );
-        shortlist(&mut round);
-        let by_value = (round.into_iter()).filter_map(|(pair, _)| Some((estimate(&pair)?, pair)));
-        // And the move's own best partner, looked for on the pixels it leaves: the
-        // parameter may stand for another mistake (a far object hidden, as a far clip).
+        // The move's own best partner, looked for on the pixels it leaves: the parameter
+        // may stand for another mistake (a far object hidden, as a far clip).
         let partners = (candidates.iter().copied()).filter(|p| p.id() != m.id());
         let by_partner = (scorer.left(m))
             .and_then(|left| scorer.best_partner(m, partners.collect(), &left))
             .map(|(partner, estimated)| (estimated, vec![m, partner]));
-        let best = (by_value.chain(by_partner))
+        // And, unless that explains the image, the parameter under the move: its first
+        // values and the one found alone, then the round values near the best of those.
+        let explained = by_partner.as_ref().is_some_and(|(e, _)| e.0 >= EXPLAINED);
+        let kind = value.kind;
+        let under = |v: Variant| vec![m, v];
+        let by_value = || {
+            let firsts = (other_values().into_iter())
+                .filter(|v| v.kind == kind)
+                .chain([value]);
+            let mut round: Vec<(Vec<Variant>, f64)> = firsts
+                .filter_map(|v| Some((under(v), estimate_on(0, &under(v))?.0)))
+                .collect();
+            let tried: Vec<(f64, f64)> = (round.iter())
+                .filter_map(|(v, agreement)| Some((v[1].value?, *agreement)))
+                .collect();
+            let values = tried.iter().map(|t| t.0).collect();
+            round.extend(
+                (values_near(kind, &tried, values).into_iter())
+                    .filter_map(|v| Some((under(v), estimate_on(0, &under(v))?.0))),
+            );
+            shortlist(&mut round);
+            (round.into_iter())
+                .filter_map(|(pair, _)| Some((estimate(&pair)?, pair)))
+                .collect::<Vec<_>>()
+        };
+        let by_value = if explained { Vec::new() } else { by_value() };
+        let best = (by_value.into_iter().chain(by_partner))
             .max_by(|a, b| a.0.0.total_cmp(&b.0.0).then(std::cmp::Ordering::Greater));
         if let Some(((estimated, fixed), pair)) = best
             && estimated > top.agreement
