@@ -484,14 +484,15 @@ pub(crate) fn with_mask(
     // sample's differing pixels (all of them, where they are fewer than the sample holds;
     // of 512, some 2 % either way). Jittered rays' images rendered so gained nothing.
     let hopeless = |tried: &Tried| {
-        let split = samples[1].1;
-        let fixed = estimate(&tried.variants).map_or(0, |(_, fixed)| fixed.len());
         let whole = |v: &Variant| {
             let site = v.kind.row().site;
             (site == Site::Camera && !SHIFTS.contains(&v.kind)) || site == Site::Option
         };
-        let every_ray = tried.variants.iter().all(whole);
-        every_ray && reach(&tried.variants).is_none() && (fixed as f64) < HOPELESS * split as f64
+        let few = || {
+            let fixed = estimate(&tried.variants).map_or(0, |(_, fixed)| fixed.len());
+            (fixed as f64) < HOPELESS * samples[1].1 as f64
+        };
+        tried.variants.iter().all(whole) && reach(&tried.variants).is_none() && few()
     };
     let mut found: Vec<Tried> = Vec::new();
     if let Some(tried) = estimated.into_iter().next()
@@ -656,7 +657,7 @@ pub(crate) fn with_mask(
             && let Some((agreement, counts)) = exact(&pair)
             && agreement > top.agreement
         {
-            // The pair's pixel: one the move alone leaves, so that it shows the parameter.
+            // The pair's pixel: one the move alone leaves, so that it shows the second.
             let alone_fixed = estimate(&[m]).map_or(Vec::new(), |(_, fixed)| fixed);
             let pixel = pixel_of(&pair, &fixed, &alone_fixed);
             found.insert(
