@@ -205,7 +205,7 @@ fn scene_causes(case: Case, mask: (&[u64], usize)) -> SceneCauses {
     if explained as f64 >= NEARLY_ALL * mask.1 as f64 {
         // Jittered rays beside a mistake that changes far more pixels (an object hidden):
         // what the candidate leaves is read for jitter against the candidate's image.
-        let left = mask.1 - explained;
+        let left = mask.1.saturating_sub(explained);
         if left > 0
             && let Some(Through::Second([_, jitter])) = jitter_through(case, mask, &found)
             && supported(jitter.explains, jitter.of, 0)
@@ -458,7 +458,7 @@ fn moved_jitter(
     let third = match (explained as f64) < NEARLY_ALL * count as f64 && left_count <= JITTER_REPAIR
     {
         true => {
-            let rest = (mask, count - explained);
+            let rest = (mask, count.saturating_sub(explained));
             third_cause(case, first, &repaired, rest, &repaired_at)
         }
         false => None,
