@@ -396,7 +396,7 @@ fn jitter_through(
 /// row off, and one of them jitters its rays too): the best single move among the
 /// catalogue's candidates `found`, and jitter read against the reference it moves, both
 /// stated where together they explain nearly every differing pixel (`mask`) and break
-/// almost nothing. The move explains the pixels the moved reference gives (those past
+/// almost nothing, with a third mistake where the two leave more ([`third_cause`]). The move explains the pixels the moved reference gives (those past
 /// its edge too), jitter those within what the moved reference takes inside the pixel;
 /// the move breaks the agreeing pixels that neither explains. Neither alone explains
 /// half: the move leaves every jittered pixel, and jitter read in place finds another
@@ -459,7 +459,7 @@ fn moved_jitter(
     {
         true => {
             let rest = (mask, count.saturating_sub(explained));
-            third_cause(case, first, &repaired, rest, &repaired_at)
+            third_cause(case, first, &repaired, rest, (&agrees_moved, &repaired_at))
         }
         false => None,
     };
@@ -494,14 +494,15 @@ fn moved_jitter(
 /// moves: the catalogue's partner of the move in `repaired` (the student's image with the
 /// pixels jitter explains given the moved reference's bytes, `jittered`), diagnosed at the
 /// tolerance jitter leaves with those pixels counting neither way; counted on what the
-/// two leave (the differing pixels of `mask` that neither explains, `rest` of them),
-/// against the image the move and the partner render. Where the pixels support it.
+/// two leave (the differing pixels of `mask` that neither explains, `rest` of them: not
+/// within the moved reference, `agrees_moved`, and not jittered), against the image the
+/// move and the partner render. Where the pixels support it.
 fn third_cause(
     case: Case,
     first: Variant,
     repaired: &Image,
     (mask, rest): (&[u64], usize),
-    jittered: &dyn Fn(usize) -> bool,
+    (agrees_moved, jittered): (&dyn Fn(usize) -> bool, &dyn Fn(usize) -> bool),
 ) -> Option<Cause> {
     let (scene, options, student) = (case.scene, case.options, case.student);
     let reference = &case.rendered.image;
@@ -530,14 +531,6 @@ fn third_cause(
     let (second, diagnosis) = second?;
     let both = options.with_variants(&[first, second]).ok()?;
     let image = render::render(scene, &both, |_| {});
-    let moved = options.with_variant(first).ok()?;
-    let from = super::diagnose::shifted_from(options, &moved, &[first])?;
-    // What the two leave: differing, not within the moved reference (at the tolerance,
-    // as the move was counted), not jittered.
-    let agrees_moved = |i: usize| {
-        let at = |j: usize| within(reference.pixels[j], student.pixels[i], case.levels);
-        from(i).is_none_or(at)
-    };
     let given = |i: usize| within(image.pixels[i], student.pixels[i], levels);
     let (mut explains, mut breaks, mut pixel) = (0usize, 0usize, None);
     for i in (0..pixels).filter(|&i| !jittered(i)) {

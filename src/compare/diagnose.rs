@@ -449,21 +449,23 @@ pub(crate) fn with_mask(
             .or(fixed.first())
             .copied()
     };
-    let mut estimated: Vec<Tried> = (first_round.into_iter())
+    // Each with how many of the large sample's differing pixels it fixes.
+    let mut estimated: Vec<(Tried, usize)> = (first_round.into_iter())
         .filter_map(|(variants, _)| {
             let (agreement, fixed) = estimate(&variants)?;
             let pixel = pixel_of(&variants, &fixed, &[]);
-            (agreement > before).then_some(Tried {
+            let tried = Tried {
                 pixel,
                 variants,
                 agreement,
                 max_dist_range: None,
                 counts: None,
-            })
+            };
+            (agreement > before).then_some((tried, fixed.len()))
         })
         .collect();
     // Best first; a stable sort keeps the table's order among equals.
-    estimated.sort_by(|a, b| b.agreement.total_cmp(&a.agreement));
+    estimated.sort_by(|a, b| b.0.agreement.total_cmp(&a.0.agreement));
     // One variant scored exactly, for the causes' order, with the first pixel of the large
     // sample it fixes where `pixel`.
     let alone = |one: Variant, pixel: bool| {
@@ -483,20 +485,16 @@ pub(crate) fn with_mask(
     // large sample shows it cannot be a cause: it fixes under [`HOPELESS`] of the
     // sample's differing pixels (all of them, where they are fewer than the sample holds;
     // of 512, some 2 % either way). Jittered rays' images rendered so gained nothing.
-    let hopeless = |tried: &Tried| {
+    let hopeless = |(tried, fixed): &(Tried, usize)| {
         let whole = |v: &Variant| {
             let site = v.kind.row().site;
             (site == Site::Camera && !SHIFTS.contains(&v.kind)) || site == Site::Option
         };
-        let few = || {
-            let fixed = estimate(&tried.variants).map_or(0, |(_, fixed)| fixed.len());
-            (fixed as f64) < HOPELESS * samples[1].1 as f64
-        };
-        tried.variants.iter().all(whole) && reach(&tried.variants).is_none() && few()
+        let few = (*fixed as f64) < HOPELESS * samples[1].1 as f64;
+        few && tried.variants.iter().all(whole) && reach(&tried.variants).is_none()
     };
     let mut found: Vec<Tried> = Vec::new();
-    if let Some(tried) = estimated.into_iter().next()
-        && !hopeless(&tried)
+    if let Some((tried, _)) = estimated.into_iter().next().filter(|t| !hopeless(t))
         && let Some((agreement, counts)) = exact(&tried.variants)
         && agreement > before
     {

@@ -243,6 +243,11 @@ pub fn text(report: &Report, reference: &str, student: &str, choices: Option<&Ch
     out
 }
 
+/// Whether two lists hold the same variants, in any order (a candidate's and its causes').
+fn same_variants(a: &[Variant], b: &[Variant]) -> bool {
+    a.len() == b.len() && a.iter().all(|v| b.contains(v))
+}
+
 /// The diagnosis's lines of the report (empty without `--diagnose`): the variants that
 /// explain the student's image, the decisions on the reference's paths whose change
 /// gives the student's bytes, the sentence that names one object's or light's
@@ -270,10 +275,8 @@ pub fn diagnosis(report: &Report) -> Vec<String> {
         // agreement.
         let variants: Vec<Variant> = causes.iter().flat_map(|c| c.variants.clone()).collect();
         let whole_image_first = causes.first().is_some_and(|c| c.variants.is_empty());
-        let same =
-            |d: &[Variant]| d.len() == variants.len() && d.iter().all(|v| variants.contains(v));
         let found = (diagnosis.iter())
-            .find(|d| same(&d.variants))
+            .find(|d| same_variants(&d.variants, &variants))
             .filter(|_| !whole_image_first);
         if let Some(found) = found {
             line(format!(
@@ -325,12 +328,11 @@ pub fn diagnosis(report: &Report) -> Vec<String> {
         if let [first, second, ..] = causes
             && !super::causes::supported(first.explains, first.of, first.breaks)
         {
-            let pair = diagnosis.iter().find(|d| {
-                let both = first.variants.iter().chain(&second.variants);
-                d.variants.len() == 2
-                    && both.clone().count() == 2
-                    && both.into_iter().all(|v| d.variants.contains(v))
-            });
+            let both: Vec<Variant> = (first.variants.iter().chain(&second.variants))
+                .copied()
+                .collect();
+            let pair =
+                (diagnosis.iter()).find(|d| both.len() == 2 && same_variants(&d.variants, &both));
             let (explains, breaks) = match pair.and_then(|p| Some((p.explains?, p.breaks?))) {
                 Some(counts) => counts,
                 None => (
