@@ -671,6 +671,16 @@ fn stated(found: &[Diagnosis], differing: usize) -> Vec<Cause> {
     let Some((both, both_broken)) = counts(best) else {
         return Vec::new();
     };
+    // A first that makes every differing pixel agree, and some agreeing ones differ, that
+    // the pair leaves agreeing (an image upside down whose far clip blacks out pixels
+    // that were black where they came from): what is left after it is what it breaks,
+    // and the second makes all of those agree and breaks the ones the pair leaves.
+    if fixed == differing && broken > 0 && both_broken == 0 {
+        let repairs = (broken, broken, differing - both);
+        if supported(repairs.0, repairs.1, repairs.2) {
+            return vec![first, cause(second, repairs, order[0])];
+        }
+    }
     let (explains, of) = (both.saturating_sub(fixed), differing - fixed);
     let counts_second = (explains, of, both_broken.saturating_sub(broken));
     let second_cause = cause(second, counts_second, order[0]);
@@ -1100,6 +1110,46 @@ mod tests {
         assert_eq!(columns(640, 480), (77, 640));
         // 320x240's 19 shares nothing with it, and is kept.
         assert_eq!(columns(320, 240).0, 19);
+    }
+
+    #[test]
+    fn a_first_cause_that_breaks_what_the_second_repairs_leaves_those_to_it() {
+        // 100 pixels, 0..10 differing. Turned over, all ten agree and 10 and 11 differ;
+        // with the clip too, all 100 agree. What the flip leaves is {10, 11}: the clip
+        // makes both agree and breaks nothing.
+        let found = |ids: &str, agreeing: usize, explains: usize, breaks: usize| Diagnosis {
+            variants: ids
+                .split(',')
+                .map(|id| Variant::parse(id).unwrap())
+                .collect(),
+            agreement_before: 0.9,
+            agreement_after: agreeing as f64 / 100.0,
+            max_dist_range: None,
+            pixel: Some([0, 0]),
+            subject: None,
+            trace: None,
+            explains: Some(explains),
+            breaks: Some(breaks),
+            differing: Some(10),
+        };
+        let found = [
+            found("upside-down,far-clip=10", 100, 10, 0),
+            found("upside-down", 98, 10, 2),
+            found("far-clip=10", 92, 2, 0),
+        ];
+        let told: Vec<(String, usize, usize, usize)> = (stated(&found, 10).into_iter())
+            .map(|c| (c.id, c.explains, c.of, c.breaks))
+            .collect();
+        let expected = [("upside-down", 10, 10, 2), ("far-clip=10", 2, 2, 0)];
+        assert_eq!(
+            told,
+            expected.map(|(id, e, o, b)| (id.to_string(), e, o, b))
+        );
+        // Where the pair breaks one of the pixels the flip broke, the clip is not stated
+        // so: what it repairs is no longer all that the flip broke.
+        let mut partly = found.clone();
+        partly[0].breaks = Some(1);
+        assert!(stated(&partly, 10).iter().all(|c| c.id != "far-clip=10"));
     }
 
     #[test]

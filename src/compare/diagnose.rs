@@ -361,16 +361,23 @@ pub(crate) fn with_mask(
     // rounded agrees worse than the image as it is under either alone, so neither would
     // be the best to pair. The move is the one under which the reference's own pixels,
     // moved, agree best within one level on the large sample (no ray traced), where it
-    // beats the image as it is.
+    // beats the image as it is. The sample holds as many differing pixels as agreeing
+    // ones: each is weighed by the share of the image it stands for, so that the count
+    // estimates the whole image's (an image upside down that is mostly black agrees
+    // with the reference on few pixels, and moved on more).
     let rules = |v: &&Variant| matches!(v.kind, Kind::RoundBytes | Kind::Scale256);
     let within_one = |from: &dyn Fn(usize) -> Option<usize>| {
-        let close = |i: usize, j: usize| {
-            super::pixel_difference(reference.pixels[j], student.pixels[i]) <= levels.max(1)
+        let close = |&i: &usize| {
+            let close = |j: usize| {
+                super::pixel_difference(reference.pixels[j], student.pixels[i]) <= levels.max(1)
+            };
+            from(i).is_some_and(close)
         };
-        let sample = samples[1].0.iter();
-        sample
-            .filter(|&&i| from(i).is_some_and(|j| close(i, j)))
-            .count()
+        let (sample, split) = &samples[1];
+        let (sample_d, sample_a) = sample.split_at(*split);
+        let weight = |n: usize, of: usize| n as f64 / of.max(1) as f64;
+        sample_d.iter().filter(|i| close(i)).count() as f64 * weight(differing, sample_d.len())
+            + sample_a.iter().filter(|i| close(i)).count() as f64 * weight(agreeing, sample_a.len())
     };
     let as_it_is = within_one(&|i| Some(i));
     let best_moved = (candidates.iter().filter(|v| SHIFTS.contains(&v.kind)))
@@ -380,7 +387,7 @@ pub(crate) fn with_mask(
             Some((m, within_one(&from)))
         })
         .filter(|&(_, n)| n > as_it_is)
-        .max_by_key(|&(_, n)| n)
+        .max_by(|a, b| a.1.total_cmp(&b.1))
         .map(|(m, _)| m);
     let moved_bytes = (best_moved.into_iter())
         .flat_map(|m| candidates.iter().filter(rules).map(move |&r| vec![m, r]));
@@ -611,10 +618,17 @@ pub(crate) fn with_mask(
     // or 6): where the best candidate holds one and a move agrees better than the image
     // as it is, the parameter is estimated again under the move, and the move's best
     // partner is looked for.
+    // The same where the best candidate explains too little and its first is not the
+    // move, whose best partner the pair stage then looked for (a reader stopped at a far
+    // wall, with or without the image turned over, in an image upside down whose far wall
+    // is clipped): the move's best partner is looked for, and the parameter is not.
     let continuous = |v: &&Variant| CONTINUOUS.contains(&v.kind) && v.line.is_none();
     if let Some(m) = best_moved
         && let Some(top) = found.first().filter(|t| t.agreement < 1.0).cloned()
-        && let Some(&value) = top.variants.iter().find(continuous)
+        && let Some(value) = match top.variants.iter().find(continuous) {
+            Some(&value) => Some(Some(value)),
+            None => (top.variants[0] != m && top.agreement < EXPLAINED).then_some(None),
+        }
     {
         // The move's own best partner, looked for on the pixels it leaves: the parameter
         // may stand for another mistake (a far object hidden, as a far clip).
@@ -625,9 +639,9 @@ pub(crate) fn with_mask(
         // And, unless that explains the image, the parameter under the move: its first
         // values and the one found alone, then the round values near the best of those.
         let explained = by_partner.as_ref().is_some_and(|(e, _)| e.0 >= EXPLAINED);
-        let kind = value.kind;
         let under = |v: Variant| vec![m, v];
-        let by_value = || {
+        let by_value = |value: Variant| {
+            let kind = value.kind;
             let firsts = (other_values().into_iter())
                 .filter(|v| v.kind == kind)
                 .chain([value]);
@@ -647,7 +661,10 @@ pub(crate) fn with_mask(
                 .filter_map(|(pair, _)| Some((estimate(&pair)?, pair)))
                 .collect::<Vec<_>>()
         };
-        let by_value = if explained { Vec::new() } else { by_value() };
+        let by_value = match value.filter(|_| !explained) {
+            Some(value) => by_value(value),
+            None => Vec::new(),
+        };
         let best = (by_value.into_iter().chain(by_partner))
             .max_by(|a, b| a.0.0.total_cmp(&b.0.0).then(std::cmp::Ordering::Greater));
         if let Some(((estimated, fixed), pair)) = best

@@ -328,6 +328,40 @@ fn two_mistakes_are_both_named_the_whole_image_s_first() {
     }
 }
 
+/// An image written upside down whose hits past 10 are misses. In d03 the clip blacks out
+/// only pixels that were black where the flip brings them from: turning the image over
+/// makes every differing pixel agree and those differ, and the clip is what is left (it
+/// was told nothing). In d06 the best single was a reader stopped at the far wall (line
+/// 8), which blacks out nearly as much; the image turned over agrees with the reference
+/// on more of its pixels than as it is, though on fewer of an even sample of differing
+/// and agreeing ones.
+#[test]
+fn an_image_upside_down_whose_far_objects_are_clipped_is_told_both() {
+    let dir = folder("causes-upside-clip");
+    for name in ["d03", "d06"] {
+        let Some(scene) = course(name) else { continue };
+        let student = dir.join("student.ppm");
+        render(
+            &scene,
+            SIZE,
+            &["--variant", "upside-down,far-clip=10"],
+            &student,
+        );
+        let (mut found, json) = causes(&scene, &student);
+        found.sort();
+        assert_eq!(found, ["far-clip=10", "upside-down"], "{name}: {json:#}");
+        // Each cause's counts are of what the ones before it left: the differing pixels
+        // it does not explain and the agreeing ones it breaks; the two leave nothing.
+        let mut left = json["differing_pixels"].as_u64().unwrap();
+        for cause in json["causes"].as_array().unwrap() {
+            let count = |key: &str| cause[key].as_u64().unwrap();
+            assert_eq!(count("of"), left, "{name}: {cause}");
+            left = left - count("explains") + count("breaks");
+        }
+        assert_eq!(left, 0, "{name}: {json:#}");
+    }
+}
+
 /// `scene`'s text with `from` replaced by `to` (which must be there), as a user edits it.
 fn edited(dir: &Path, scene: &Path, name: &str, from: &str, to: &str) -> PathBuf {
     let text = std::fs::read_to_string(scene).unwrap();
