@@ -1036,9 +1036,26 @@ impl Scorer<'_> {
                 + *kept_count as f64 * (1.0 - share(still, sample_kept));
             (!fixed.is_empty()).then_some(((total - differing) / total, fixed))
         };
-        let mut first_round: Vec<(Variant, f64)> = (partners.into_iter())
-            .filter_map(|partner| Some((partner, estimate(0, partner)?.0)))
+        let mut first_round: Vec<(Variant, f64)> = (partners.iter())
+            .filter_map(|&partner| Some((partner, estimate(0, partner)?.0)))
             .collect();
+        // A continuous partner at the round values near the best of its first ones, as
+        // alone (a shadow epsilon of 0.3 after a move, which 0.1 half explains).
+        for kind in CONTINUOUS {
+            let of_kind = |v: &Variant| v.kind == kind && v.line.is_none();
+            let tried: Vec<(f64, f64)> = (first_round.iter())
+                .filter(|(v, _)| of_kind(v))
+                .filter_map(|(v, agreement)| Some((v.value?, *agreement)))
+                .collect();
+            let values = (partners.iter().filter(|v| of_kind(v)))
+                .filter_map(|v| v.value)
+                .collect();
+            let near = values_near(kind, &tried, values).into_iter();
+            first_round.extend(
+                near.filter(|v| !partners.contains(v))
+                    .filter_map(|partner| Some((partner, estimate(0, partner)?.0))),
+            );
+        }
         // Best first; a stable sort keeps the candidates' order among equals.
         first_round.sort_by(|a, b| b.1.total_cmp(&a.1));
         first_round.truncate(SHORTLIST);
@@ -1186,7 +1203,7 @@ fn other_values() -> Vec<Variant> {
     }
     out.extend([0.001, 0.05, 0.1, 0.2, 0.5, 1.0].map(|e| with(Kind::ZTolerance, e)));
     out.extend([10.0, 20.0, 50.0, 100.0].map(|d| with(Kind::FarClip, d)));
-    out.extend([1e-4, 1e-3, 0.01, 0.1].map(|e| with(Kind::ShadowEpsilon, e)));
+    out.extend([1e-4, 1e-3, 0.01, 0.1, 1.0].map(|e| with(Kind::ShadowEpsilon, e)));
     out
 }
 

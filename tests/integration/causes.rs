@@ -362,6 +362,43 @@ fn an_image_upside_down_whose_far_objects_are_clipped_is_told_both() {
     }
 }
 
+/// A shadow epsilon of 0.3 after a move, drawn by the tiny tracer: the move leaves the few
+/// pixels lit where a shadow's caster lies within 0.3 of the surface, which the first
+/// epsilons tried (0.1 and below) do not light; the partner is tried at the round values
+/// near the best of them, as a parameter alone is (the move alone was told before).
+#[test]
+fn a_shadow_epsilon_after_a_move_is_found_at_its_value() {
+    let dir = folder("causes-move-epsilon");
+    let scene = example("shadows");
+    let epsilon = Mistakes {
+        shadow_epsilon: Some(0.3),
+        ..Mistakes::default()
+    };
+    let moves = [
+        (
+            "row-offset=1",
+            Mistakes {
+                row_offset: 1,
+                ..epsilon
+            },
+        ),
+        (
+            "upside-down",
+            Mistakes {
+                upside_down: true,
+                ..epsilon
+            },
+        ),
+    ];
+    for (id, mistakes) in moves {
+        let (mut found, json) = drawn(&dir, &scene, mistakes);
+        found.sort();
+        let mut expected = [id, "shadow-epsilon=0.3"];
+        expected.sort();
+        assert_eq!(found, expected, "{id}: {json:#}");
+    }
+}
+
 /// `scene`'s text with `from` replaced by `to` (which must be there), as a user edits it.
 fn edited(dir: &Path, scene: &Path, name: &str, from: &str, to: &str) -> PathBuf {
     let text = std::fs::read_to_string(scene).unwrap();

@@ -788,6 +788,9 @@ pub(super) struct Mistakes {
     pub far_clip: Option<f64>,
     /// No shadow rays: every light reaches every surface that faces it.
     pub no_shadows: bool,
+    /// A shadow ray tests every object, the one it leaves too, and counts only hits past
+    /// E (spec §7.5's shadow-epsilon).
+    pub shadow_epsilon: Option<f64>,
     /// Output row r holds pixel row r (the bottom row written first).
     pub upside_down: bool,
     /// The world point (x + 0.5)/W·ww - ww/2, and the same for y, rather than spec §4.1's
@@ -996,8 +999,12 @@ pub(super) fn tiny_tracer(text: &str, (w, h): (usize, usize), mistakes: Mistakes
                 }
                 let blocked = !mistakes.no_shadows
                     && (objects.iter().enumerate())
-                        .filter(|&(j, _)| j != i && Some(j) != mistakes.no_shadow)
-                        .any(|(_, o)| hit(&o.2, point, u).is_some_and(|s| s < dist));
+                        .filter(|&(j, _)| j != i || mistakes.shadow_epsilon.is_some())
+                        .filter(|&(j, _)| Some(j) != mistakes.no_shadow)
+                        .any(|(_, o)| {
+                            let past = |s: f64| mistakes.shadow_epsilon.is_none_or(|e| s > e);
+                            hit(&o.2, point, u).is_some_and(|s| s < dist && past(s))
+                        });
                 let falloff = match mistakes.square_falloff {
                     true => dist * dist,
                     false => dist,
