@@ -1036,11 +1036,20 @@ impl Scorer<'_> {
                 + *kept_count as f64 * (1.0 - share(still, sample_kept));
             (!fixed.is_empty()).then_some(((total - differing) / total, fixed))
         };
+        // A partner's epsilons reach 1: the few pixels a move leaves of an epsilon of 0.3
+        // are lit by none of the first values alone (0.1 and below), and by 1.
+        let reach = Variant {
+            value: Some(1.0),
+            ..Variant::of(Kind::ShadowEpsilon)
+        };
+        if !partners.contains(&reach) && may_change(scene, options, &reach) {
+            partners.push(reach);
+        }
         let mut first_round: Vec<(Variant, f64)> = (partners.iter())
             .filter_map(|&partner| Some((partner, estimate(0, partner)?.0)))
             .collect();
         // A continuous partner at the round values near the best of its first ones, as
-        // alone (a shadow epsilon of 0.3 after a move, which 0.1 half explains).
+        // alone (a shadow epsilon of 0.3 after a move, which 1 explains with others).
         for kind in CONTINUOUS {
             let of_kind = |v: &Variant| v.kind == kind && v.line.is_none();
             let tried: Vec<(f64, f64)> = (first_round.iter())
@@ -1203,7 +1212,7 @@ fn other_values() -> Vec<Variant> {
     }
     out.extend([0.001, 0.05, 0.1, 0.2, 0.5, 1.0].map(|e| with(Kind::ZTolerance, e)));
     out.extend([10.0, 20.0, 50.0, 100.0].map(|d| with(Kind::FarClip, d)));
-    out.extend([1e-4, 1e-3, 0.01, 0.1, 1.0].map(|e| with(Kind::ShadowEpsilon, e)));
+    out.extend([1e-4, 1e-3, 0.01, 0.1].map(|e| with(Kind::ShadowEpsilon, e)));
     out
 }
 
