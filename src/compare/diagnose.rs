@@ -28,7 +28,7 @@ use super::{Reference, is_set, within};
 use crate::render::trace::object_name;
 use crate::render::variant::{Needs, Row, Scope, Site, output_row};
 use crate::render::{self, Image, Kind, Options, VARIANTS, Variant};
-use crate::scene::{Material, Object, Pattern, Scene};
+use crate::scene::{Object, Scene};
 use crate::shapes::Shape;
 use serde::Serialize;
 
@@ -1172,8 +1172,8 @@ fn may_change(scene: &Scene, options: &Options, variant: &Variant) -> bool {
     let mirrors = traced
         && options.stage.reflects()
         && match object {
-            Some(object) => reflects(object),
-            None => scene.objects.iter().any(reflects),
+            Some(object) => object.reflects(),
+            None => scene.objects.iter().any(Object::reflects),
         };
     match variant.row().needs {
         Needs::Light => lit,
@@ -1187,14 +1187,6 @@ fn may_change(scene: &Scene, options: &Options, variant: &Variant) -> bool {
             _ => true,
         },
     }
-}
-
-/// Whether a mirror ray can leave `object`: its specular, or a tiled plane's other
-/// tiles', is not zero (spec §4.5).
-fn reflects(object: &Object) -> bool {
-    let mirror = |m: &Material| m.specular != glam::DVec3::ZERO;
-    mirror(&object.look.material)
-        || matches!(&object.look.pattern, Pattern::Tiles { background, .. } if mirror(background))
 }
 
 /// The values of the continuous and whole-number variants tried besides their first
@@ -1476,7 +1468,7 @@ pub fn estimate_max_dist(
 ) -> Option<(f64, [f64; 2], f64, Option<usize>)> {
     // MAX_DIST cuts mirror paths only (spec §4.2 step 1 never stops the camera ray): a
     // scene without a mirror has one image under every D.
-    if !scene.objects.iter().any(reflects) {
+    if !scene.objects.iter().any(Object::reflects) {
         return None;
     }
     let probe = probe(options);

@@ -59,7 +59,7 @@ fn spans_of<K: Kernel, const TOGETHER: bool>(
         let out = &mut pixels[at..at + count];
         at += count;
         let bytes = |i: usize, colour: DVec3| out[i] = tracer.bytes(colour);
-        tracer.span::<K, TOGETHER>(|i| xs[i], y, count, bytes);
+        tracer.span::<K, TOGETHER, false>(|i| xs[i], y, count, bytes);
     }
     pixels
 }

@@ -302,21 +302,22 @@ fn pixels_of<B: Rulebook>(
     options: &Options,
     progress: &mut impl FnMut(usize),
 ) -> Vec<[u8; 3]> {
-    with_kernel!(options.kernel, K => match tracer.together() {
-        true => each_span(setup, options, spans::<K, B, true>(&tracer), progress),
-        false => each_span(setup, options, spans::<K, B, false>(&tracer), progress),
+    with_kernel!(options.kernel, K => match (tracer.together(), tracer.ambient_only()) {
+        (true, _) => each_span(setup, options, spans::<K, B, true, false>(&tracer), progress),
+        (false, true) => each_span(setup, options, spans::<K, B, false, true>(&tracer), progress),
+        (false, false) => each_span(setup, options, spans::<K, B, false, false>(&tracer), progress),
     })
 }
 
 /// What fills a span of the plain render (the pixels from (first, y) on): their bytes,
-/// the rays traced `TOGETHER` or not ([`Tracer::span`]).
-fn spans<'t, K: Kernel, B: Rulebook, const TOGETHER: bool>(
+/// the rays traced `TOGETHER` or not, `AMBIENT` or not ([`Tracer::span`]).
+fn spans<'t, K: Kernel, B: Rulebook, const TOGETHER: bool, const AMBIENT: bool>(
     tracer: &'t Tracer<B>,
 ) -> impl Fn(usize, usize, &mut [[u8; 3]]) + Sync + 't {
     move |first: usize, y: usize, out: &mut [[u8; 3]]| {
         let count = out.len();
         let bytes = |i: usize, colour: DVec3| out[i] = tracer.bytes(colour);
-        tracer.span::<K, TOGETHER>(|i| first + i, y, count, bytes);
+        tracer.span::<K, TOGETHER, AMBIENT>(|i| first + i, y, count, bytes);
     }
 }
 

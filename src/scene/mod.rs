@@ -241,6 +241,15 @@ impl Object {
         };
         layout::of_code(code).map_or(layout::QUADRIC.name, |layout| layout.name)
     }
+
+    /// Whether a mirror ray may leave it (spec §4.5): a specular that is not zero in
+    /// its material, or in a tiled plane's background (a texture or a shader keeps the
+    /// material's).
+    pub fn reflects(&self) -> bool {
+        let mirror = |m: &Material| m.specular != DVec3::ZERO;
+        mirror(&self.look.material)
+            || matches!(&self.look.pattern, Pattern::Tiles { background, .. } if mirror(background))
+    }
 }
 
 /// A validated scene: header, lights and objects, each in file order.

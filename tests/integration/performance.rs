@@ -213,7 +213,8 @@ fn the_room_under_every_variant_renders_as_the_linear_scan() {
 /// recorder. All three give the same bytes on every example, course scene and generated
 /// scene, at a size that leaves short spans at the right edge, in both stages with shadow
 /// rays and under every variant: the whole image's, and each scoped edit on each record
-/// it applies to.
+/// it applies to. In the ambient stage `render` traces each span's rays without the
+/// lights' and the mirror's steps (`Tracer::ambient_only`), and gives the same bytes too.
 #[test]
 fn spans_give_each_pixels_own_bytes() {
     use legacy_rt::compare::{render_pixels, render_with_margins};
@@ -223,6 +224,7 @@ fn spans_give_each_pixels_own_bytes() {
     let every: Vec<usize> = (0..width * height).collect();
     let mut checked = 0;
     let mut lit = 0;
+    let mut ambient = 0;
     for (name, scene) in scenes() {
         let mut variants: Vec<Option<Variant>> = vec![None];
         variants.extend(Variant::all().map(Some));
@@ -235,7 +237,7 @@ fn spans_give_each_pixels_own_bytes() {
                 }
             }
         }
-        for stage in [Stage::Shadows, Stage::Full] {
+        for stage in [Stage::Ambient, Stage::Shadows, Stage::Full] {
             for &variant in &variants {
                 let plain = Options {
                     stage,
@@ -262,14 +264,15 @@ fn spans_give_each_pixels_own_bytes() {
                 );
                 assert!(sampled == each.pixels, "{name}, {}, {id}", stage.name());
                 checked += 1;
-                lit += usize::from(!scene.lights.is_empty());
+                lit += usize::from(!scene.lights.is_empty() && stage != Stage::Ambient);
+                ambient += usize::from(stage == Stage::Ambient);
             }
         }
     }
-    // Not vacuous: most renders have a light, so they go by spans.
+    // Not vacuous: most renders have a light, so they go by spans; a third are ambient.
     assert!(
-        checked > 1000 && lit > checked / 2,
-        "{checked} renders, {lit} with lights"
+        checked > 1000 && lit > checked / 2 && ambient > checked / 4,
+        "{checked} renders, {lit} with lights, {ambient} ambient"
     );
 }
 
