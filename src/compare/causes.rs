@@ -396,8 +396,9 @@ fn jitter_through(
 /// row off, and one of them jitters its rays too): the best single move among the
 /// catalogue's candidates `found`, and jitter read against the reference it moves, both
 /// stated where together they explain nearly every differing pixel (`mask`) and break
-/// almost nothing, with a third mistake where the two leave more ([`third_cause`]). The move explains the pixels the moved reference gives (those past
-/// its edge too), jitter those within what the moved reference takes inside the pixel;
+/// almost nothing, with a third mistake where the two leave more ([`third_cause`]). The
+/// move explains the pixels the moved reference gives (those past its edge too), jitter
+/// those within what the moved reference takes inside the pixel;
 /// the move breaks the agreeing pixels that neither explains. Neither alone explains
 /// half: the move leaves every jittered pixel, and jitter read in place finds another
 /// pixel's ray.

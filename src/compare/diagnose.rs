@@ -1038,12 +1038,12 @@ impl Scorer<'_> {
         };
         // A partner's epsilons reach 1: the few pixels a move leaves of an epsilon of 0.3
         // are lit by none of the first values alone (0.1 and below), and by 1.
-        let reach = Variant {
+        let epsilon_one = Variant {
             value: Some(1.0),
             ..Variant::of(Kind::ShadowEpsilon)
         };
-        if !partners.contains(&reach) && may_change(scene, options, &reach) {
-            partners.push(reach);
+        if !partners.contains(&epsilon_one) && may_change(scene, options, &epsilon_one) {
+            partners.push(epsilon_one);
         }
         let mut first_round: Vec<(Variant, f64)> = (partners.iter())
             .filter_map(|&partner| Some((partner, estimate(0, partner)?.0)))

@@ -360,6 +360,16 @@ fn an_image_upside_down_whose_far_objects_are_clipped_is_told_both() {
         }
         assert_eq!(left, 0, "{name}: {json:#}");
     }
+    // The same two mistakes drawn by the tiny tracer on examples/shadows.txt, which was
+    // told nothing.
+    let mistakes = Mistakes {
+        upside_down: true,
+        far_clip: Some(10.0),
+        ..Mistakes::default()
+    };
+    let (mut found, json) = drawn(&dir, &example("shadows"), mistakes);
+    found.sort();
+    assert_eq!(found, ["far-clip=10", "upside-down"], "shadows: {json:#}");
 }
 
 /// A shadow epsilon of 0.3 after a move, drawn by the tiny tracer: the move leaves the few
