@@ -23,17 +23,20 @@ use glam::DVec3;
 /// traced together, a span as in `render`.
 pub fn render_pixels(scene: &Scene, options: &Options, indices: &[usize]) -> Vec<[u8; 3]> {
     // The kernel chosen once, outside the loop over the pixels (as in `render`), and
-    // whether the spans' rays go together: each loop is compiled for one.
+    // whether the spans' rays go together or need only the ambient: each loop is
+    // compiled for one.
     with_kernel!(options.kernel, K => with_tracer(scene, options, indices, |_, tracer, rows| {
-        match tracer.together() {
-            true => spans_of::<K, true>(tracer, indices, rows),
-            false => spans_of::<K, false>(tracer, indices, rows),
+        match (tracer.together(), tracer.ambient_only()) {
+            (true, _) => spans_of::<K, true, false>(tracer, indices, rows),
+            (false, true) => spans_of::<K, false, true>(tracer, indices, rows),
+            (false, false) => spans_of::<K, false, false>(tracer, indices, rows),
         }
     }))
 }
 
-/// [`render_pixels`] with `tracer`, the rays of each span traced `TOGETHER` or not.
-fn spans_of<K: Kernel, const TOGETHER: bool>(
+/// [`render_pixels`] with `tracer`, the rays of each span traced `TOGETHER` or not,
+/// `AMBIENT` or not ([`Tracer::span`]).
+fn spans_of<K: Kernel, const TOGETHER: bool, const AMBIENT: bool>(
     tracer: &Tracer<&Rules>,
     indices: &[usize],
     rows: &mut Rows,
@@ -59,7 +62,7 @@ fn spans_of<K: Kernel, const TOGETHER: bool>(
         let out = &mut pixels[at..at + count];
         at += count;
         let bytes = |i: usize, colour: DVec3| out[i] = tracer.bytes(colour);
-        tracer.span::<K, TOGETHER, false>(|i| xs[i], y, count, bytes);
+        tracer.span::<K, TOGETHER, AMBIENT>(|i| xs[i], y, count, bytes);
     }
     pixels
 }
