@@ -372,6 +372,27 @@ fn an_image_upside_down_whose_far_objects_are_clipped_is_told_both() {
     assert_eq!(found, ["far-clip=10", "upside-down"], "shadows: {json:#}");
 }
 
+/// Jittered rays with no shadow rays, in d04 at 320x240: the catalogue's best estimate
+/// was jitter, which alone fixes under two fifths of the differing pixels (the shadows'
+/// pixels differ whatever the rays) and is not rendered whole for that; nothing else was
+/// looked at and the image was told nothing. The best estimate that can be a cause is
+/// rendered whole instead (no-shadows), and jitter is found as its partner.
+#[test]
+fn jittered_rays_without_shadows_are_told_both() {
+    let dir = folder("causes-jitter-no-shadows");
+    let Some(scene) = course("d04") else { return };
+    let student = dir.join("student.ppm");
+    render(
+        &scene,
+        (320, 240),
+        &["--variant", "jitter,no-shadows"],
+        &student,
+    );
+    let (mut found, json) = causes(&scene, &student);
+    found.sort();
+    assert_eq!(found, ["jitter", "no-shadows"], "{json:#}");
+}
+
 /// A shadow epsilon of 0.3 after a move, drawn by the tiny tracer: the move leaves the few
 /// pixels lit where a shadow's caster lies within 0.3 of the surface, which the first
 /// epsilons tried (0.1 and below) do not light; the partner is tried at the round values
