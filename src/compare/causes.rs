@@ -1002,12 +1002,29 @@ fn jitter_cause(
         );
         // The reference's bytes at the centre, corners and edges' middles of the pixel
         // whose ray the student's pixel i shows (its own, or where a move brings it from),
-        // in turn.
+        // in turn. The centre's are the reference's pixel; a corner is shared by four
+        // pixels and an edge's middle by two, so each point of the half-pixel lattice is
+        // traced once, from the first pixel that asks for it (in a fixed order: the same
+        // bytes on every run).
+        let traced = std::cell::RefCell::new(rustc_hash::FxHashMap::default());
         let samples = |i: usize| {
             let j = from(i).unwrap_or(i);
-            let centre = frame.world(j % w, options.row_of(j / w));
+            let (x, y) = (j % w, options.row_of(j / w));
+            let centre = frame.world(x, y);
+            let traced = &traced;
             SUB_PIXEL.iter().map(move |&(dx, dy)| {
-                frame.bytes_through(centre + glam::DVec3::new(dx * step.x, dy * step.y, 0.0))
+                if (dx, dy) == (0.0, 0.0) {
+                    // The render's camera ray through the pixel is this one: the same bytes.
+                    debug_assert_eq!(reference.pixels[j], frame.bytes_through(centre));
+                    return reference.pixels[j];
+                }
+                // The lattice point: 2x + 1 + 2dx across, 2y + 1 + 2dy up.
+                let at = |p: usize, d: f64| (2 * p + 1).wrapping_add_signed((2.0 * d) as isize);
+                let key = (at(x, dx), at(y, dy));
+                *(traced.borrow_mut().entry(key)).or_insert_with(|| {
+                    let offset = glam::DVec3::new(dx * step.x, dy * step.y, 0.0);
+                    frame.bytes_through(centre + offset)
+                })
             })
         };
         // Whether the student's pixel i lies within what the reference takes inside the
