@@ -519,6 +519,9 @@ impl<const PATHS: bool> Recorder for Margins<'_, '_, PATHS> {
                     let max = self.sizes.max_dist;
                     self.take((total_dist - max).abs() / max);
                 }
+                if PATHS {
+                    self.paths.segment(depth);
+                }
                 self.mirrored = depth > 0;
                 self.spread = match self.mirrored {
                     false => Spread::fresh(ray.base.abs().max_element()),

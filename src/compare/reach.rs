@@ -11,7 +11,8 @@
 //! (hidden, unlit, no-mirror, flipped-normal, facing-normals, tile-parity and
 //! shadow-epsilon act at hits on the object; no-shadow where it was the shadow ray's
 //! first blocker, since any other blocker still blocks; no-light, unshadowed and
-//! square-falloff where the light added something or was blocked); a byte rule changes a
+//! square-falloff where the light added something or was blocked); one-bounce only
+//! where a second mirror ray was traced; a byte rule changes a
 //! pixel's bytes by at most one level per channel, which the summary holds. The other
 //! variants (the camera's, the divisor, geometry that may be hit where it was not) can
 //! change any pixel.
@@ -26,7 +27,8 @@ use glam::DVec3;
 /// One pixel's path in the reference, in 8 bytes: per object hit, per shadow blocker and
 /// per light a bit of its index modulo the field's width (indices that share a bit all
 /// count as named: a pixel is never missed, at worst one more is re-traced), the
-/// steps its bytes take under round-bytes and scale-256, and whether MAX_DIST ended it.
+/// steps its bytes take under round-bytes and scale-256, whether MAX_DIST ended it, and
+/// whether it went on past its first mirror bounce.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct Paths(u64);
 
@@ -42,6 +44,9 @@ const ROUND: u32 = 56;
 const SCALE_256: u32 = 59;
 /// Whether MAX_DIST ended the path (spec §4.2 step 1).
 const CUT: u64 = 1 << 62;
+/// Whether a second mirror ray was traced (spec §4.5's recursion past one bounce): what
+/// one-bounce can change.
+const DEEP: u64 = 1 << 63;
 
 impl Field {
     /// The bit of `index`.
@@ -74,6 +79,11 @@ impl Paths {
     /// MAX_DIST ended the path.
     pub(crate) fn cut(&mut self) {
         self.0 |= CUT;
+    }
+
+    /// A ray was traced at recursion depth `depth` (0: the camera ray).
+    pub(crate) fn segment(&mut self, depth: usize) {
+        self.0 |= u64::from(depth >= 2) * DEEP;
     }
 
     /// `light` added something.
@@ -197,6 +207,11 @@ impl Reach {
         for variant in variants {
             if variant.row().site == Site::Bytes && reach.bytes.is_none() {
                 reach.bytes = Some(variant.kind);
+                continue;
+            }
+            // At most one bounce changes only the paths that took a second.
+            if variant.kind == Kind::OneBounce {
+                reach.records |= DEEP;
                 continue;
             }
             let line = variant.line?;

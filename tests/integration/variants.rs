@@ -277,9 +277,11 @@ fn a_hidden_plane_hides_nothing_behind_it() {
 
 /// What `compare --diagnose` relies on to score a candidate without a whole render
 /// (src/render/reach.rs): a variant of one record changes only the pixels whose paths in
-/// the reference name that record, and a byte rule only by the steps the paths hold. For
-/// every localisable edit of the first objects and of every light of each scene (and with
-/// round-bytes or scale-256 besides), the image put together from the reference (the
+/// the reference name that record, a byte rule only by the steps the paths hold, and
+/// one-bounce only the pixels whose paths took a second mirror bounce. For every
+/// localisable edit of the first objects and of every light of each scene (and with
+/// round-bytes or scale-256 besides), and for one-bounce alone and beside the first edit,
+/// the image put together from the reference (the
 /// pixels not touched) and from [`compare::render_pixels`] (the touched ones) is the
 /// image rendered whole under the variants.
 #[test]
@@ -325,11 +327,14 @@ fn a_variant_of_one_record_changes_only_the_pixels_whose_paths_name_it() {
             Variant::parse("round-bytes").unwrap(),
             Variant::parse("scale-256").unwrap(),
         ];
+        let one_bounce = Variant::parse("one-bounce").unwrap();
         if let Some(first) = sets.first().cloned() {
             sets.push(vec![bytes[0], first[0]]);
             sets.push(vec![first[0], bytes[1]]);
+            sets.push(vec![first[0], one_bounce]);
         }
         sets.extend(bytes.map(|b| vec![b]));
+        sets.push(vec![one_bounce]);
         for variants in sets {
             let ids: Vec<String> = variants.iter().map(|v| v.id()).collect();
             let what = format!("{} --variant {}", path.display(), ids.join(","));
@@ -393,7 +398,8 @@ fn render_pixels_gives_the_renders_bytes_at_any_pixels() {
 }
 
 /// The edits whose record may be hit where it was not (geometry) can change any pixel:
-/// no reach is claimed for them.
+/// no reach is claimed for them, nor for the whole image's variants but the byte rules
+/// and one-bounce.
 #[test]
 fn geometry_variants_claim_no_reach() {
     let scene = gallery();
@@ -404,7 +410,9 @@ fn geometry_variants_claim_no_reach() {
             }
         }
     }
-    for variant in Variant::all().filter(|v| v.row().site != render::variant::Site::Bytes) {
+    let claimed =
+        |v: &Variant| v.row().site == render::variant::Site::Bytes || v.id() == "one-bounce";
+    for variant in Variant::all().filter(|v| !claimed(v)) {
         assert_eq!(
             legacy_rt::compare::Reach::of(&scene, &[], &[variant]),
             None,
