@@ -538,8 +538,9 @@ impl<const PATHS: bool> Recorder for Margins<'_, '_, PATHS> {
                 self.take((total_dist - max).abs() / max);
             }
             Event::Closest { hit } => {
-                if PATHS && let Some((object, _)) = hit {
+                if PATHS && let Some((object, t)) = hit {
                     self.paths.hit(object);
+                    self.paths.far(t);
                 }
                 self.closest(hit);
             }
@@ -605,8 +606,9 @@ impl<const PATHS: bool> Recorder for Margins<'_, '_, PATHS> {
                 self.start(&ray, Some(self.light_dist));
             }
             Event::Light(LightStep::Blocked { blocker }) => {
-                if PATHS && let Some((object, _)) = blocker {
+                if PATHS && let Some((object, t)) = blocker {
                     self.paths.blocked(object, self.light);
+                    self.paths.far(t);
                 }
                 let margin = match blocker {
                     Some(_) => self.surest_blocker,

@@ -12,7 +12,9 @@
 //! shadow-epsilon act at hits on the object; no-shadow where it was the shadow ray's
 //! first blocker, since any other blocker still blocks; no-light, unshadowed and
 //! square-falloff where the light added something or was blocked); one-bounce only
-//! where a second mirror ray was traced; a byte rule changes a
+//! where a second mirror ray was traced; far-clip=D only where a camera or mirror ray's
+//! hit or a shadow ray's blocker lay at D or beyond (the path keeps a power of two above
+//! its farthest); a byte rule changes a
 //! pixel's bytes by at most one level per channel, which the summary holds. The other
 //! variants (the camera's, the divisor, geometry that may be hit where it was not) can
 //! change any pixel.
@@ -26,7 +28,8 @@ use glam::DVec3;
 
 /// One pixel's path in the reference, in 8 bytes: per object hit, per shadow blocker and
 /// per light a bit of its index modulo the field's width (indices that share a bit all
-/// count as named: a pixel is never missed, at worst one more is re-traced), the
+/// count as named: a pixel is never missed, at worst one more is re-traced), how far its
+/// farthest hit or blocker lay (a power of two at or above it, [`Paths::far`]), the
 /// steps its bytes take under round-bytes and scale-256, whether MAX_DIST ended it, and
 /// whether it went on past its first mirror bounce.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -36,7 +39,9 @@ pub struct Paths(u64);
 #[derive(Clone, Copy)]
 struct Field(u32, u32);
 
-const HITS: Field = Field(0, 32);
+const HITS: Field = Field(0, 28);
+/// The farthest hit's or first blocker's t, as [`far_bucket`] gives it (4 bits).
+const FAR: u32 = 28;
 const BLOCKERS: Field = Field(32, 12);
 const LIGHTS: Field = Field(44, 12);
 /// Three bits per rule: whether each channel's byte is one level above the reference's.
@@ -76,6 +81,20 @@ impl Paths {
         self.0 |= BLOCKERS.bit(object) | LIGHTS.bit(light);
     }
 
+    /// A camera or mirror ray's closest hit, or a shadow ray's blocker (the first found,
+    /// no nearer than the nearest), lay at `t`: the path's farthest is kept.
+    pub(crate) fn far(&mut self, t: f64) {
+        let bucket = far_bucket(t);
+        if bucket > self.far_bucket() {
+            self.0 = self.0 & !(0b1111 << FAR) | u64::from(bucket) << FAR;
+        }
+    }
+
+    /// The bucket of the path's farthest hit or blocker ([`far_bucket`]; 0 for none).
+    fn far_bucket(self) -> u8 {
+        (self.0 >> FAR & 0b1111) as u8
+    }
+
     /// MAX_DIST ended the path.
     pub(crate) fn cut(&mut self) {
         self.0 |= CUT;
@@ -92,7 +111,7 @@ impl Paths {
     }
 
     /// Whether a camera or mirror ray may hit `object`: it did, or an object that shares
-    /// its bit did (never with 32 objects or fewer).
+    /// its bit did (never with 28 objects or fewer).
     pub(crate) fn may_hit(self, object: usize) -> bool {
         self.0 & HITS.bit(object) != 0
     }
@@ -183,11 +202,32 @@ pub(crate) fn packed([r, g, b]: [u8; 3]) -> u32 {
     u32::from_le_bytes([r, g, b, 0])
 }
 
+/// The bucket of a hit's or blocker's `t` (> 0) in [`Paths`]' four bits: b below 15
+/// says t <= 2^(b - 4) (0 for t up to 1/16, 14 for t up to 1024); 15 says nothing (t
+/// beyond 1024, or not finite). From the exponent of t, rounded up: no logarithm.
+fn far_bucket(t: f64) -> u8 {
+    let bits = t.to_bits();
+    let exponent = (bits >> 52 & 0x7ff) as i64 - 1023;
+    let above = i64::from(bits & ((1 << 52) - 1) != 0);
+    (exponent + above + 4).clamp(0, 15) as u8
+}
+
+/// The least bucket ([`far_bucket`]) whose hits far-clip=`d` may clip: a path whose
+/// farthest lies in a lower one lay nearer than d all along.
+fn clipped_from(d: f64) -> u8 {
+    (0..15)
+        .find(|&b| (2f64).powi(i32::from(b) - 4) >= d)
+        .unwrap_or(15)
+}
+
 /// The pixels a set of variants can change, as far as [`Paths`] tells.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Reach {
     /// The bits of the records they act on: a pixel whose paths share one may change.
     records: u64,
+    /// far-clip's least bucket ([`clipped_from`]), where there is one: a pixel whose
+    /// farthest hit lies in it or above may change.
+    clipped: Option<u8>,
     /// The byte rule among them, whose bytes the paths hold.
     bytes: Option<Kind>,
 }
@@ -202,6 +242,7 @@ impl Reach {
         }
         let mut reach = Reach {
             records: 0,
+            clipped: None,
             bytes: None,
         };
         for variant in variants {
@@ -212,6 +253,12 @@ impl Reach {
             // At most one bounce changes only the paths that took a second.
             if variant.kind == Kind::OneBounce {
                 reach.records |= DEEP;
+                continue;
+            }
+            // A far clip only the paths that met something at its distance or beyond.
+            if variant.kind == Kind::FarClip {
+                let from = clipped_from(variant.value.unwrap_or(f64::INFINITY));
+                reach.clipped = Some(reach.clipped.map_or(from, |c| c.min(from)));
                 continue;
             }
             let line = variant.line?;
@@ -232,12 +279,12 @@ impl Reach {
 
     /// Whether any pixel may need to be traced again (not for a byte rule alone).
     pub fn traces(self) -> bool {
-        self.records != 0
+        self.records != 0 || self.clipped.is_some()
     }
 
     /// Whether a pixel whose path is `paths` may change: it must be traced again.
     pub fn touches(self, paths: Paths) -> bool {
-        paths.0 & self.records != 0
+        paths.0 & self.records != 0 || self.clipped.is_some_and(|c| paths.far_bucket() >= c)
     }
 
     /// The byte rule among the variants, if any: the bytes of the pixels it does not touch
@@ -301,15 +348,47 @@ mod tests {
     }
 
     #[test]
+    fn a_far_bucket_bounds_its_t_and_far_clip_touches_what_may_lie_beyond() {
+        // b < 15: t <= 2^(b-4), and t > 2^(b-5) (the bucket is the least that holds it).
+        for t in [
+            1e-9, 0.0625, 0.07, 0.5, 1.0, 1.5, 7.9, 8.0, 8.000001, 10.0, 1000.0,
+        ] {
+            let b = far_bucket(t);
+            let bound = (2f64).powi(i32::from(b) - 4);
+            assert!(t <= bound, "{t}: {b}");
+            assert!(b == 0 || t > bound / 2.0, "{t}: {b}");
+        }
+        assert_eq!(far_bucket(2000.0), 15);
+        assert_eq!(far_bucket(f64::INFINITY), 15);
+        // far-clip=10 clips hits at t >= 10: buckets up to 7 (t <= 8) are untouched, 8 not.
+        assert_eq!(clipped_from(10.0), 8);
+        assert_eq!(clipped_from(8.0), 7);
+        assert_eq!(clipped_from(5000.0), 15);
+        let (mut near, mut far) = (Paths::default(), Paths::default());
+        near.far(3.0);
+        near.far(7.5);
+        far.far(7.5);
+        far.far(12.0);
+        far.far(2.0);
+        let reach = Reach {
+            records: 0,
+            clipped: Some(clipped_from(10.0)),
+            bytes: None,
+        };
+        assert!(!reach.touches(near) && reach.touches(far));
+    }
+
+    #[test]
     fn indices_that_share_a_bit_are_all_named() {
         let mut paths = Paths::default();
         paths.hit(3);
         let reach = |object: usize| Reach {
             records: HITS.bit(object),
+            clipped: None,
             bytes: None,
         };
         assert!(reach(3).touches(paths));
-        assert!(reach(35).touches(paths));
+        assert!(reach(31).touches(paths));
         assert!(!reach(4).touches(paths));
         paths.blocked(4, 0);
         assert!(!reach(4).touches(paths), "a blocker is not a hit");

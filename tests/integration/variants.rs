@@ -2,6 +2,7 @@
 //! rule's formula gives on a scene small enough to work out by hand.
 
 use glam::DVec3;
+use legacy_rt::compare::render_with_paths;
 use legacy_rt::render::{self, Kind, Options, Variant};
 use legacy_rt::shapes::{Ray, Shape};
 
@@ -278,15 +279,15 @@ fn a_hidden_plane_hides_nothing_behind_it() {
 /// What `compare --diagnose` relies on to score a candidate without a whole render
 /// (src/render/reach.rs): a variant of one record changes only the pixels whose paths in
 /// the reference name that record, a byte rule only by the steps the paths hold, and
-/// one-bounce only the pixels whose paths took a second mirror bounce. For every
-/// localisable edit of the first objects and of every light of each scene (and with
-/// round-bytes or scale-256 besides), and for one-bounce alone and beside the first edit,
+/// one-bounce only the pixels whose paths took a second mirror bounce, far-clip=D only
+/// those whose paths met something at D or beyond. For every localisable edit of the
+/// first objects and of every light of each scene (and with round-bytes or scale-256
+/// besides), and for one-bounce and far clips of 2 to 20 alone and beside the first edit,
 /// the image put together from the reference (the
 /// pixels not touched) and from [`compare::render_pixels`] (the touched ones) is the
 /// image rendered whole under the variants.
 #[test]
 fn a_variant_of_one_record_changes_only_the_pixels_whose_paths_name_it() {
-    use legacy_rt::compare::{Reach, render_with_paths};
     let files = every_scene();
     let object_edits = [
         "hidden",
@@ -328,40 +329,100 @@ fn a_variant_of_one_record_changes_only_the_pixels_whose_paths_name_it() {
             Variant::parse("scale-256").unwrap(),
         ];
         let one_bounce = Variant::parse("one-bounce").unwrap();
+        let clips = [
+            "far-clip=2",
+            "far-clip=8",
+            "far-clip=1",
+            "far-clip=3",
+            "far-clip=5",
+            "far-clip=12",
+            "far-clip=20",
+        ]
+        .map(|id| Variant::parse(id).unwrap());
         if let Some(first) = sets.first().cloned() {
             sets.push(vec![bytes[0], first[0]]);
             sets.push(vec![first[0], bytes[1]]);
             sets.push(vec![first[0], one_bounce]);
+            sets.push(vec![first[0], clips[2]]);
         }
         sets.extend(bytes.map(|b| vec![b]));
         sets.push(vec![one_bounce]);
+        sets.extend(clips.map(|c| vec![c]));
         for variants in sets {
-            let ids: Vec<String> = variants.iter().map(|v| v.id()).collect();
-            let what = format!("{} --variant {}", path.display(), ids.join(","));
-            let edited = variants
-                .iter()
-                .fold(options, |o, &v| o.with_variant(v).unwrap());
-            let whole = render::render(&scene, &edited, |_| {});
-            let reach = Reach::of(&scene, &[], &variants).unwrap_or_else(|| panic!("{what}"));
-            let traced: Vec<usize> = (0..paths.len())
-                .filter(|&i| reach.touches(paths[i]))
-                .collect();
-            let mut bytes = legacy_rt::compare::render_pixels(&scene, &edited, &traced).into_iter();
-            for (i, &path) in paths.iter().enumerate() {
-                let pixel = match reach.touches(path) {
-                    true => bytes.next().unwrap(),
-                    false => reach.untouched(path, reference.pixels[i]),
-                };
-                assert_eq!(pixel, whole.pixels[i], "{what}: pixel {i}");
-            }
+            let what = format!("{}", path.display());
+            let rendered = (&reference, &paths[..]);
+            let traced = assembled_is_whole(&scene, options, rendered, &variants, &what);
             checked += 1;
-            touched_somewhere += usize::from(!traced.is_empty());
-            untouched_somewhere += usize::from(traced.len() < paths.len());
+            touched_somewhere += usize::from(traced > 0);
+            untouched_somewhere += usize::from(traced < options.width * options.height);
         }
     }
     // Not vacuous: the edits touch some pixels and leave others to the reference.
     assert!(checked > 200, "{checked}");
     assert!(touched_somewhere > checked / 2 && untouched_somewhere > checked / 2);
+}
+
+/// The image put together from `scene`'s reference under `options` and its paths (the pixels
+/// `variants`' [`Reach`] does not touch, stepped under their byte rule) and from
+/// [`compare::render_pixels`] (the touched ones) is the whole render under `variants`;
+/// how many pixels were touched.
+///
+/// [`Reach`]: legacy_rt::compare::Reach
+fn assembled_is_whole(
+    scene: &legacy_rt::scene::Scene,
+    options: Options,
+    (reference, paths): (&render::Image, &[legacy_rt::compare::Paths]),
+    variants: &[Variant],
+    what: &str,
+) -> usize {
+    use legacy_rt::compare::{Reach, render_pixels};
+    let ids: Vec<String> = variants.iter().map(|v| v.id()).collect();
+    let what = format!("{what} --variant {}", ids.join(","));
+    let edited = (variants.iter()).fold(options, |o, &v| o.with_variant(v).unwrap());
+    let whole = render::render(scene, &edited, |_| {});
+    let reach = Reach::of(scene, &[], variants).unwrap_or_else(|| panic!("{what}"));
+    let traced: Vec<usize> = (0..paths.len())
+        .filter(|&i| reach.touches(paths[i]))
+        .collect();
+    let mut bytes = render_pixels(scene, &edited, &traced).into_iter();
+    for (i, &path) in paths.iter().enumerate() {
+        let pixel = match reach.touches(path) {
+            true => bytes.next().unwrap(),
+            false => reach.untouched(path, reference.pixels[i]),
+        };
+        assert_eq!(pixel, whole.pixels[i], "{what}: pixel {i}");
+    }
+    traced.len()
+}
+
+/// A far clip that frees a shadow ray where the camera ray's hit lies nearer than the
+/// clip: a floor seen from close by (camera hits from t = 3.2 on, at z <= 0), lit from
+/// above past a sphere (shadow rays blocked at t of about 15). far-clip=9 frees those
+/// shadows where the camera's hit lies nearer than 8, which only the blocker's t, kept in
+/// the path, says.
+#[test]
+fn a_far_clip_that_frees_a_shadow_ray_is_within_its_reach() {
+    let text = "8 6\n0 0 3\n\n14\n0.1 0.1 0.1\n5 5 5\n0 0 0\n0 1 0\n0 -1 0\n\n\
+                13\n0.2 0.2 0.2\n1 1 1\n0 0 0\n0 20 2\n6\n\n10\n100 100 100\n0 50 2\n";
+    let scene = legacy_rt::load(text).unwrap();
+    let options = Options::new(40, 30);
+    let clip = Variant::parse("far-clip=9").unwrap();
+    let (reference, _, paths) = render_with_paths(&scene, &options, legacy_rt::compare::F32);
+    let rendered = (&reference, &paths[..]);
+    let touched = assembled_is_whole(&scene, options, rendered, &[clip], "floor under a sphere");
+    // Not vacuous: the clip frees shadows on pixels it leaves lit.
+    let [plain, clipped] = [vec![], vec![clip]].map(|v| {
+        let edited = (v.iter()).fold(options, |o, &v| o.with_variant(v).unwrap());
+        render::render(&scene, &edited, |_| {})
+    });
+    let near_changed = (0..plain.pixels.len())
+        .filter(|&i| plain.pixels[i] != clipped.pixels[i] && plain.pixels[i] != [0; 3])
+        .filter(|&i| clipped.pixels[i] != [0; 3])
+        .count();
+    assert!(
+        near_changed > 0 && touched < plain.pixels.len(),
+        "{near_changed} {touched}"
+    );
 }
 
 /// [`compare::render_pixels`] gives the whole render's bytes at whichever pixels it is
@@ -398,8 +459,8 @@ fn render_pixels_gives_the_renders_bytes_at_any_pixels() {
 }
 
 /// The edits whose record may be hit where it was not (geometry) can change any pixel:
-/// no reach is claimed for them, nor for the whole image's variants but the byte rules
-/// and one-bounce.
+/// no reach is claimed for them, nor for the whole image's variants but the byte rules,
+/// one-bounce and far-clip.
 #[test]
 fn geometry_variants_claim_no_reach() {
     let scene = gallery();
@@ -410,8 +471,10 @@ fn geometry_variants_claim_no_reach() {
             }
         }
     }
-    let claimed =
-        |v: &Variant| v.row().site == render::variant::Site::Bytes || v.id() == "one-bounce";
+    let claimed = |v: &Variant| {
+        v.row().site == render::variant::Site::Bytes
+            || matches!(v.kind, Kind::OneBounce | Kind::FarClip)
+    };
     for variant in Variant::all().filter(|v| !claimed(v)) {
         assert_eq!(
             legacy_rt::compare::Reach::of(&scene, &[], &[variant]),
