@@ -29,7 +29,7 @@ use glam::DVec3;
 /// One pixel's path in the reference, in 8 bytes: per object hit, per shadow blocker and
 /// per light a bit of its index modulo the field's width (indices that share a bit all
 /// count as named: a pixel is never missed, at worst one more is re-traced), how far its
-/// farthest hit or blocker lay (a power of two at or above it, [`Paths::far`]), the
+/// farthest hit or blocker lay (a power of two at or above it), the
 /// steps its bytes take under round-bytes and scale-256, whether MAX_DIST ended it, and
 /// whether it went on past its first mirror bounce.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
