@@ -250,29 +250,29 @@ impl Reach {
                 reach.bytes = Some(variant.kind);
                 continue;
             }
-            // At most one bounce changes only the paths that took a second.
-            if variant.kind == Kind::OneBounce {
-                reach.records |= DEEP;
-                continue;
-            }
-            // A far clip only the paths that met something at its distance or beyond.
-            if variant.kind == Kind::FarClip {
-                let from = clipped_from(variant.value.unwrap_or(f64::INFINITY));
-                reach.clipped = Some(reach.clipped.map_or(from, |c| c.min(from)));
-                continue;
-            }
-            let line = variant.line?;
-            let object = scene.objects.iter().position(|o| o.line == line);
-            let light = scene.lights.iter().position(|l| l.line == line);
             // What of the path the variant's rule is read on (its row says).
-            reach.records |= match (variant.row().reads, object, light) {
-                (Reads::Hits, Some(object), _) => HITS.bit(object),
-                (Reads::Blockers, Some(object), _) => BLOCKERS.bit(object),
-                (Reads::Lights, _, Some(light)) => LIGHTS.bit(light),
-                // Geometry (no-z-rule, cone-scale, nearer-root) may be hit where it was
-                // not.
-                _ => return None,
-            };
+            match variant.row().reads {
+                // At most one bounce: the paths that took a second.
+                Reads::SecondBounce => reach.records |= DEEP,
+                // A far clip: the paths that met something at its distance or beyond.
+                Reads::Distances => {
+                    let from = clipped_from(variant.value.unwrap_or(f64::INFINITY));
+                    reach.clipped = Some(reach.clipped.map_or(from, |c| c.min(from)));
+                }
+                reads => {
+                    let line = variant.line?;
+                    let object = scene.objects.iter().position(|o| o.line == line);
+                    let light = scene.lights.iter().position(|l| l.line == line);
+                    reach.records |= match (reads, object, light) {
+                        (Reads::Hits, Some(object), _) => HITS.bit(object),
+                        (Reads::Blockers, Some(object), _) => BLOCKERS.bit(object),
+                        (Reads::Lights, _, Some(light)) => LIGHTS.bit(light),
+                        // Geometry (no-z-rule, cone-scale, nearer-root) may be hit where
+                        // it was not.
+                        _ => return None,
+                    };
+                }
+            }
         }
         Some(reach)
     }

@@ -167,7 +167,8 @@ pub struct Row {
     pub rule: &'static str,
     /// What it does instead.
     pub instead: &'static str,
-    /// What of a pixel's path its rule is read on, where it is scoped to one record.
+    /// What of a pixel's path its rule is read on: for one record, that record; for the
+    /// whole image, where a summary of the path can tell.
     pub reads: Reads,
     /// Where the rule it replaces is consulted at all.
     pub needs: Needs,
@@ -177,9 +178,9 @@ pub struct Row {
     pub advice: Option<(&'static str, &'static str)>,
 }
 
-/// What of a pixel's path the rule of a variant scoped to one record is read on: only
-/// the pixels whose paths hold that record can change (`compare --diagnose` re-traces
-/// those alone, src/compare/reach.rs).
+/// What of a pixel's path the rule of a variant is read on: only the pixels whose paths
+/// hold that (the variant's record, for one scoped to one) can change
+/// (`compare --diagnose` re-traces those alone, src/compare/reach.rs).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Reads {
     /// The hits on its object (camera and mirror rays).
@@ -188,6 +189,11 @@ pub enum Reads {
     Blockers,
     /// Its light's terms.
     Lights,
+    /// The mirror recursion past its first bounce: the paths that took a second.
+    SecondBounce,
+    /// How far the hits and the shadow rays' blockers lie: the paths that met something
+    /// at the variant's value or beyond.
+    Distances,
     /// The geometry, or the image as a whole: any pixel may change.
     Anything,
 }
@@ -320,7 +326,7 @@ variants! {
     /// §4.5: at most one reflected ray per camera ray.
     OneBounce: "one-bounce", Tracer, Image, Parameter::None, "bounces",
         "§4.5 recursion", "at most one reflected ray per camera ray",
-        needs Mirror;
+        reads SecondBounce, needs Mirror;
     /// §4.2: MAX_DIST D instead of 32.
     MaxDist: "max-dist", Option, Image, Parameter::Required("D", 70.0), "max-dist",
         "§4.2 MAX_DIST 32", "MAX_DIST D (one term of the course used 70)";
@@ -351,7 +357,8 @@ variants! {
     /// §4.6 (§7.5): a hit farther than D from the ray's base is a miss.
     FarClip: "far-clip", Hits, Image, Parameter::Required("D", 32.0), "far clip",
         "§4.6 any t > 0 counts",
-        "a hit farther than D from the ray's base is a miss (a closest-hit search that starts from mindist = D)";
+        "a hit farther than D from the ray's base is a miss (a closest-hit search that starts from mindist = D)",
+        reads Distances;
     /// §5.3/§5.4 (§7.5): the frame's x is unit(xdir) as given, not projected into the
     /// plane, on every framed plane or one.
     TileUnprojected: "tile-unprojected", Scene, ImageOrObject(FramedPlanes), Parameter::None, "frame",
