@@ -83,11 +83,10 @@ impl Paths {
 
     /// A camera or mirror ray's closest hit, or a shadow ray's blocker (the first found,
     /// no nearer than the nearest), lay at `t`: the path's farthest is kept.
+    #[inline(always)]
     pub(crate) fn far(&mut self, t: f64) {
-        let bucket = far_bucket(t);
-        if bucket > self.far_bucket() {
-            self.0 = self.0 & !(0b1111 << FAR) | u64::from(bucket) << FAR;
-        }
+        let bucket = self.far_bucket().max(far_bucket(t));
+        self.0 = self.0 & !(0b1111 << FAR) | u64::from(bucket) << FAR;
     }
 
     /// The bucket of the path's farthest hit or blocker ([`far_bucket`]; 0 for none).
@@ -220,14 +219,17 @@ fn clipped_from(d: f64) -> u8 {
         .unwrap_or(15)
 }
 
+/// [`Reach`]'s bucket without a far clip: above every bucket.
+const NO_CLIP: u8 = 16;
+
 /// The pixels a set of variants can change, as far as [`Paths`] tells.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Reach {
     /// The bits of the records they act on: a pixel whose paths share one may change.
     records: u64,
-    /// far-clip's least bucket ([`clipped_from`]), where there is one: a pixel whose
-    /// farthest hit lies in it or above may change.
-    clipped: Option<u8>,
+    /// far-clip's least bucket ([`clipped_from`]): a pixel whose farthest hit lies in it
+    /// or above may change; [`NO_CLIP`] without a far clip.
+    clipped: u8,
     /// The byte rule among them, whose bytes the paths hold.
     bytes: Option<Kind>,
 }
@@ -242,7 +244,7 @@ impl Reach {
         }
         let mut reach = Reach {
             records: 0,
-            clipped: None,
+            clipped: NO_CLIP,
             bytes: None,
         };
         for variant in variants {
@@ -257,7 +259,7 @@ impl Reach {
                 // A far clip: the paths that met something at its distance or beyond.
                 Reads::Distances => {
                     let from = clipped_from(variant.value.unwrap_or(f64::INFINITY));
-                    reach.clipped = Some(reach.clipped.map_or(from, |c| c.min(from)));
+                    reach.clipped = reach.clipped.min(from);
                 }
                 reads => {
                     let line = variant.line?;
@@ -279,12 +281,12 @@ impl Reach {
 
     /// Whether any pixel may need to be traced again (not for a byte rule alone).
     pub fn traces(self) -> bool {
-        self.records != 0 || self.clipped.is_some()
+        self.records != 0 || self.clipped != NO_CLIP
     }
 
     /// Whether a pixel whose path is `paths` may change: it must be traced again.
     pub fn touches(self, paths: Paths) -> bool {
-        paths.0 & self.records != 0 || self.clipped.is_some_and(|c| paths.far_bucket() >= c)
+        paths.0 & self.records != 0 || paths.far_bucket() >= self.clipped
     }
 
     /// The byte rule among the variants, if any: the bytes of the pixels it does not touch
@@ -372,7 +374,7 @@ mod tests {
         far.far(2.0);
         let reach = Reach {
             records: 0,
-            clipped: Some(clipped_from(10.0)),
+            clipped: clipped_from(10.0),
             bytes: None,
         };
         assert!(!reach.touches(near) && reach.touches(far));
@@ -384,7 +386,7 @@ mod tests {
         paths.hit(3);
         let reach = |object: usize| Reach {
             records: HITS.bit(object),
-            clipped: None,
+            clipped: NO_CLIP,
             bytes: None,
         };
         assert!(reach(3).touches(paths));
