@@ -24,6 +24,7 @@
 //! that render is worth making.
 
 use super::Reach;
+use super::causes::supported;
 use super::{Reference, is_set, within};
 use crate::render::trace::object_name;
 use crate::render::variant::{Needs, Row, Scope, Site, output_row};
@@ -48,6 +49,10 @@ const SAMPLE: [usize; 2] = [128, 512];
 
 /// How many candidates go on from the small sample to the large one.
 const SHORTLIST: usize = 8;
+
+/// How many of the partners estimated best on the pixels a first leaves are scored
+/// exactly, in turn, until one does better than the first alone.
+const RANKED: usize = 3;
 
 /// An agreement that explains the image: MAX_DIST is not estimated beyond it.
 const EXPLAINED: f64 = 0.999;
@@ -389,8 +394,12 @@ pub(crate) fn with_mask(
         .filter(|&(_, n)| n > as_it_is)
         .max_by(|a, b| a.1.total_cmp(&b.1))
         .map(|(m, _)| m);
-    let moved_bytes = (best_moved.into_iter())
-        .flat_map(|m| candidates.iter().filter(rules).map(move |&r| vec![m, r]));
+    // The pixel's centre moves every ray a little, so its pixels agree under it only with
+    // the student's rule of the bytes: paired with each rule from the start too (spec1
+    // with both agreed on 516 pixels under pixel-centre alone and was told jitter).
+    let centre = (candidates.iter()).filter(|v| v.kind == Kind::PixelCentre);
+    let moved_bytes = (best_moved.iter().chain(centre))
+        .flat_map(|&m| candidates.iter().filter(rules).map(move |&r| vec![m, r]));
     let tried_first: Vec<Vec<Variant>> = (candidates.iter().map(|&v| vec![v]))
         .chain(moved_bytes)
         .collect();
@@ -559,7 +568,12 @@ pub(crate) fn with_mask(
             counts: None,
         });
     }
-    found.sort_by(|a, b| b.agreement.total_cmp(&a.agreement));
+    // Best first; of equals, the fewer variants (a move paired with a rule of the bytes
+    // that moves nothing the student's image shows is the rule alone, whose own partner
+    // is then looked for: a02 stopped at its floor, with its bytes scaled by 256).
+    found.sort_by(|a, b| {
+        (b.agreement.total_cmp(&a.agreement)).then(a.variants.len().cmp(&b.variants.len()))
+    });
     // The best one with each other candidate: a second mistake often shows only once the
     // first is undone (an image upside down hides everything else).
     if let Some(best) = found.first().filter(|best| best.agreement < 1.0).cloned() {
@@ -571,25 +585,62 @@ pub(crate) fn with_mask(
         // Under a first that only moves the pixels (a row off, upside down), the partner
         // is looked for on the pixels it leaves, where the samples of every differing
         // pixel would hold a handful.
-        let top = match scorer.left(first) {
-            Some(left) => scorer.best_partner(first, partners, &left),
+        // A partner that, with the first, does better than the first alone, scored
+        // exactly: with its estimate, the pixels of the large sample it fixes, and the
+        // pair's exact agreement and counts.
+        let better = |top: Option<(Variant, (f64, Vec<usize>))>| {
+            let (partner, (_, fixed)) = top.filter(|t| t.1.0 > best.agreement)?;
+            let (agreement, counts) = exact(&[first, partner])?;
+            (agreement > best.agreement).then_some((partner, fixed, agreement, counts))
+        };
+        // Of partners estimated on the pixels the first leaves, best first: the first few
+        // scored exactly until one does better. Two may tie there and not on the whole
+        // image (d06 a column off, stopped at line 58: a stop at 48 fixes the 43 pixels
+        // too, and breaks others the sample does not hold).
+        let better_of = |ranked: Vec<(Variant, (f64, Vec<usize>))>| {
+            (ranked.into_iter().take(RANKED)).find_map(|top| better(Some(top)))
+        };
+        let shift = SHIFTS.contains(&first.kind);
+        let top = match shift.then(|| scorer.left(first)).flatten() {
+            Some(left) => better_of(scorer.best_partners(first, partners, &left)),
             None => {
-                let mut pairs: Vec<(Vec<Variant>, f64)> = (partners.into_iter())
-                    .filter_map(|partner| {
+                let mut pairs: Vec<(Vec<Variant>, f64)> = (partners.iter())
+                    .filter_map(|&partner| {
                         Some((vec![first, partner], estimate_on(0, &[first, partner])?.0))
                     })
                     .collect();
                 shortlist(&mut pairs);
                 let pairs =
                     (pairs.into_iter()).filter_map(|(pair, _)| Some((pair[1], estimate(&pair)?)));
-                pairs.max_by(|a, b| a.1.0.total_cmp(&b.1.0).then(std::cmp::Ordering::Greater))
+                let top =
+                    pairs.max_by(|a, b| a.1.0.total_cmp(&b.1.0).then(std::cmp::Ordering::Greater));
+                // A first that explains nearly all leaves too few pixels for the samples of
+                // every differing pixel to hold one: where they show no partner, or one
+                // that explains under half of what the first leaves, it is looked for on
+                // the pixels the first leaves (d06 stopped at line 58, its bytes scaled by
+                // 256: 43 pixels of 32,607; spec1 under pixel-centre with a z tolerance of
+                // 0.1, found as 0.01 on 7 of the 58).
+                let general = better(top);
+                let (first_fixed, first_broken) =
+                    best.counts.map_or((0, 0), |c| (c.fixed, c.broken));
+                let weak = general.as_ref().is_none_or(|(_, _, _, counts)| {
+                    let explains = counts.fixed.saturating_sub(first_fixed);
+                    let breaks = counts.broken.saturating_sub(first_broken);
+                    !supported(explains, differing - first_fixed.min(differing), breaks)
+                });
+                let on_left = weak
+                    .then(|| {
+                        let left = scorer.left(first)?;
+                        better_of(scorer.best_partners(first, partners, &left))
+                    })
+                    .flatten();
+                [general, on_left]
+                    .into_iter()
+                    .flatten()
+                    .max_by(|a, b| a.2.total_cmp(&b.2).then(std::cmp::Ordering::Greater))
             }
         };
-        if let Some((partner, (estimated, fixed))) = top
-            && estimated > best.agreement
-            && let Some((agreement, counts)) = exact(&[first, partner])
-            && agreement > best.agreement
-        {
+        if let Some((partner, fixed, agreement, counts)) = top {
             // The pair's pixel: one the first alone leaves, so that it shows the partner
             // (the samples are in pixel order).
             let alone_fixed = estimate(&[first]).map_or(Vec::new(), |(_, fixed)| fixed);
@@ -637,7 +688,12 @@ pub(crate) fn with_mask(
         // may stand for another mistake (a far object hidden, as a far clip).
         let partners = (candidates.iter().copied()).filter(|p| p.id() != m.id());
         let by_partner = (scorer.left(m))
-            .and_then(|left| scorer.best_partner(m, partners.collect(), &left))
+            .and_then(|left| {
+                (scorer
+                    .best_partners(m, partners.collect(), &left)
+                    .into_iter())
+                .next()
+            })
             .map(|(partner, estimated)| (estimated, vec![m, partner]));
         // And, unless that explains the image, the parameter under the move: its first
         // values and the one found alone, then the round values near the best of those.
@@ -693,6 +749,52 @@ pub(crate) fn with_mask(
                 if !found.iter().any(|t| t.variants == [one]) {
                     found.extend(alone(one, true));
                 }
+            }
+        }
+    }
+    // A reader's stop found beside another mistake is the line where the two together
+    // agree best, which need not be the stop that agreed best alone (spec1 stopped at
+    // line 42 with its far objects clipped was found as a stop at 30, the clip hiding
+    // what the records from 30 on add): every stop is tried beside the partner, on the
+    // small sample, the best few on the large one, and the best of those scored exactly.
+    if let Some(top) = (found.first()).filter(|t| t.agreement < 1.0 && t.variants.len() == 2)
+        && let Some(k) = (top.variants.iter()).position(|v| v.kind == Kind::StoppedAt)
+    {
+        let with_stop = |stop: Variant| {
+            let mut pair = top.variants.clone();
+            pair[k] = stop;
+            pair
+        };
+        let mut round: Vec<(Vec<Variant>, f64)> = (self::stops(scene).into_iter())
+            .map(|line| Variant::of(Kind::StoppedAt).at(line))
+            .filter(|&stop| stop != top.variants[k])
+            .filter_map(|stop| Some((with_stop(stop), estimate_on(0, &with_stop(stop))?.0)))
+            .filter(|(_, agreement)| *agreement > before)
+            .collect();
+        shortlist(&mut round);
+        let best = (round.into_iter())
+            .filter_map(|(pair, _)| Some((estimate(&pair)?, pair)))
+            .max_by(|a, b| a.0.0.total_cmp(&b.0.0).then(std::cmp::Ordering::Greater));
+        if let Some(((estimated, fixed), pair)) = best
+            && estimated > top.agreement
+            && let Some((agreement, counts)) = exact(&pair)
+            && agreement > top.agreement
+        {
+            let stop = pair[k];
+            let alone_fixed = estimate(&[pair[1 - k]]).map_or(Vec::new(), |(_, fixed)| fixed);
+            let pixel = pixel_of(&pair, &fixed, &alone_fixed);
+            found.insert(
+                0,
+                Tried {
+                    variants: pair,
+                    agreement,
+                    max_dist_range: None,
+                    pixel,
+                    counts: Some(counts),
+                },
+            );
+            if !found.iter().any(|t| t.variants == [stop]) {
+                found.extend(alone(stop, true));
             }
         }
     }
@@ -878,10 +980,7 @@ impl Scorer<'_> {
     /// change traced again (the whole image when that may be any, [`Reach`]), the others
     /// the reference's (under their byte rule). `None` when they cannot apply together.
     fn counts(&self, variants: &[Variant]) -> Option<Counts> {
-        let (scene, rendered) = (self.scene, self.rendered);
         let options = self.options.with_variants(variants).ok()?;
-        let pixels = rendered.image.pixels.len();
-        let agrees = |i: usize, b: [u8; 3]| within(b, self.student.pixels[i], self.levels);
         let was_differing = |i: usize| is_set(self.mask, i);
         let mut counts = Counts::default();
         let ignored = |i: usize| {
@@ -890,7 +989,7 @@ impl Scorer<'_> {
                 .is_some_and(|w| w >> (i % 64) & 1 == 1)
         };
         let uncovered = uncovered(variants, options.width, options.height);
-        let mut tally = |i: usize, agrees_now: bool| match (was_differing(i), agrees_now) {
+        let tally = |i: usize, agrees_now: bool| match (was_differing(i), agrees_now) {
             _ if ignored(i) => {}
             // What a program with the offset writes there is its buffer's: the offset
             // explains any difference, and breaks nothing.
@@ -900,6 +999,25 @@ impl Scorer<'_> {
             (false, false) => counts.broken += 1,
             _ => {}
         };
+        self.agreement_under(variants, &options, tally);
+        Some(counts)
+    }
+
+    /// `each(i, agrees)` for every pixel i in order: whether the image under `variants`
+    /// (`options`) agrees with the student's there; for a pixel an offset leaves
+    /// uncovered, false. Every pixel they can change traced again (the whole image when
+    /// that may be any, [`Reach`]), the others the reference's (under their byte rule);
+    /// rows or columns off, the image upside down, the reference's pixels moved.
+    fn agreement_under(
+        &self,
+        variants: &[Variant],
+        options: &Options,
+        mut each: impl FnMut(usize, bool),
+    ) {
+        let (scene, rendered) = (self.scene, self.rendered);
+        let pixels = rendered.image.pixels.len();
+        let agrees = |i: usize, b: [u8; 3]| within(b, self.student.pixels[i], self.levels);
+        let uncovered = uncovered(variants, options.width, options.height);
         let reach = match rendered.paths.len() == pixels {
             true => Reach::of(scene, self.given, variants),
             false => None,
@@ -907,17 +1025,17 @@ impl Scorer<'_> {
         // Rows or columns off, the image upside down: the reference's pixels moved (under
         // the other variants' reach), not a render.
         if reach.is_none()
-            && let Some((image, edge)) = self.shifted(variants, &options)
+            && let Some((image, edge)) = self.shifted(variants, options)
         {
             let mut edge = edge.into_iter();
             for (i, b) in image.into_iter().enumerate() {
                 match b {
-                    Some(b) => tally(i, agrees(i, b)),
-                    None if uncovered(i) => tally(i, false),
-                    None => tally(i, edge.next().is_some_and(|b| agrees(i, b))),
+                    Some(b) => each(i, agrees(i, b)),
+                    None if uncovered(i) => each(i, false),
+                    None => each(i, edge.next().is_some_and(|b| agrees(i, b))),
                 }
             }
-            return Some(counts);
+            return;
         }
         match reach {
             Some(reach) => {
@@ -934,74 +1052,67 @@ impl Scorer<'_> {
                 // A byte rule alone traces nothing (and sets up no renderer).
                 let bytes = match traced.is_empty() {
                     true => Vec::new(),
-                    false => super::render_pixels(scene, &options, &traced),
+                    false => super::render_pixels(scene, options, &traced),
                 };
                 let mut next = traced.iter().zip(bytes).peekable();
                 for i in 0..pixels {
                     match next.peek() {
                         Some(&(&at, b)) if at == i => {
-                            tally(i, agrees(i, b));
+                            each(i, agrees(i, b));
                             next.next();
                         }
-                        _ => tally(i, untouched.at(i)),
+                        _ => each(i, untouched.at(i)),
                     }
                 }
             }
             None => {
-                let image = render::render(scene, &options, |_| {});
+                let image = render::render(scene, options, |_| {});
                 for (i, b) in image.pixels.into_iter().enumerate() {
-                    tally(i, agrees(i, b));
+                    each(i, agrees(i, b));
                 }
             }
         }
-        Some(counts)
     }
 }
 
 impl Scorer<'_> {
-    /// The pixels that `first`, a variant that only moves the pixels (a row off, upside
-    /// down), leaves differing, and those that agree under it (past an offset's uncovered
-    /// edge, neither): each a bit a pixel (pixel i: bit i % 64 of word i / 64) and how
-    /// many; `None` for any other variant.
+    /// The pixels that `first` leaves differing, and those that agree under it (past an
+    /// offset's uncovered edge, neither): each a bit a pixel (pixel i: bit i % 64 of word
+    /// i / 64) and how many; `None` where it does not apply. A move of the pixels (a row
+    /// off, upside down) moves the reference's; another is traced where it reaches.
     fn left(&self, first: Variant) -> Option<[(Vec<u64>, usize); 2]> {
-        if !SHIFTS.contains(&first.kind) {
-            return None;
-        }
         let options = self.options.with_variant(first).ok()?;
         let first = [first];
-        let (image, edge) = self.shifted(&first, &options)?;
         let uncovered = uncovered(&first, options.width, options.height);
-        let agrees = |i: usize, b: [u8; 3]| within(b, self.student.pixels[i], self.levels);
-        let mut edge = edge.into_iter();
-        let words = image.len().div_ceil(64);
+        let words = self.rendered.image.pixels.len().div_ceil(64);
         let [mut left, mut kept] = [(vec![0u64; words], 0), (vec![0u64; words], 0)];
-        for (i, b) in image.into_iter().enumerate() {
-            let agrees_now = match b {
-                Some(b) => agrees(i, b),
-                None if uncovered(i) => continue,
-                None => edge.next().is_some_and(|b| agrees(i, b)),
-            };
+        self.agreement_under(&first, &options, |i, agrees_now| {
+            if uncovered(i) {
+                return;
+            }
             let (mask, count) = if agrees_now { &mut kept } else { &mut left };
             mask[i / 64] |= 1 << (i % 64);
             *count += 1;
-        }
+        });
         Some([left, kept])
     }
 
     /// Of `partners` (and the variants of one record that the rays of the pixels `left`
-    /// meet, traced under `first`), the one that with `first` is estimated to agree
-    /// best: on even samples of the pixels `first` leaves differing and of those that
-    /// agree under it (`left`), each candidate on the small ones and the [`SHORTLIST`]
-    /// best again on the large. With the agreement estimated and the pixels of the
-    /// large sample it fixes.
-    fn best_partner(
+    /// meet, traced under `first`), those that with `first` are estimated to agree best,
+    /// best first (among equals, in the candidates' order): on even samples of the
+    /// pixels `first` leaves differing and of those that agree under it (`left`), each
+    /// candidate on the small ones and the [`SHORTLIST`] best again on the large. Each
+    /// with the agreement estimated and the pixels of the large sample it fixes.
+    fn best_partners(
         &self,
         first: Variant,
         mut partners: Vec<Variant>,
         [(left, left_count), (kept, kept_count)]: &[(Vec<u64>, usize); 2],
-    ) -> Option<(Variant, (f64, Vec<usize>))> {
+    ) -> Vec<(Variant, (f64, Vec<usize>))> {
         let (scene, options) = (self.scene, self.options);
-        let moved = options.with_variant(first).ok()?;
+        let Ok(moved) = options.with_variant(first) else {
+            return Vec::new();
+        };
         let pixels = self.rendered.image.pixels.len();
         let samples = SAMPLE.map(|n| {
             let every = |mask: &[u64], count: usize| {
@@ -1010,7 +1121,7 @@ impl Scorer<'_> {
             [every(left, *left_count), every(kept, *kept_count)]
         });
         if *left_count == 0 {
-            return None;
+            return Vec::new();
         }
         for v in scoped(scene, &super::involved(scene, &moved, &samples[1][0])) {
             if !partners.contains(&v) && may_change(scene, options, &v) {
@@ -1071,9 +1182,11 @@ impl Scorer<'_> {
         // Best first; a stable sort keeps the candidates' order among equals.
         first_round.sort_by(|a, b| b.1.total_cmp(&a.1));
         first_round.truncate(SHORTLIST);
-        (first_round.into_iter())
+        let mut ranked: Vec<(Variant, (f64, Vec<usize>))> = (first_round.into_iter())
             .filter_map(|(partner, _)| Some((partner, estimate(1, partner)?)))
-            .max_by(|a, b| a.1.0.total_cmp(&b.1.0).then(std::cmp::Ordering::Greater))
+            .collect();
+        ranked.sort_by(|a, b| b.1.0.total_cmp(&a.1.0));
+        ranked
     }
 
     /// The image under `variants` (at `options`) where those among them that move pixels
