@@ -50,8 +50,8 @@ const SAMPLE: [usize; 2] = [128, 512];
 /// How many candidates go on from the small sample to the large one.
 const SHORTLIST: usize = 8;
 
-/// How many of the partners estimated best on the pixels a first leaves are scored
-/// exactly, in turn, until one does better than the first alone.
+/// How many of the partners estimated best (and alike) on the pixels a first leaves are
+/// scored exactly, in turn, until one does better than the first alone.
 const RANKED: usize = 3;
 
 /// An agreement that explains the image: MAX_DIST is not estimated beyond it.
@@ -593,12 +593,17 @@ pub(crate) fn with_mask(
             let (agreement, counts) = exact(&[first, partner])?;
             (agreement > best.agreement).then_some((partner, fixed, agreement, counts))
         };
-        // Of partners estimated on the pixels the first leaves, best first: the first few
-        // scored exactly until one does better. Two may tie there and not on the whole
-        // image (d06 a column off, stopped at line 58: a stop at 48 fixes the 43 pixels
-        // too, and breaks others the sample does not hold).
+        // Of partners estimated on the pixels the first leaves, best first: those that tie
+        // with the best scored exactly, up to a few, until one does better. Two may tie
+        // there and not on the whole image (d06 a column off, stopped at line 58: a stop
+        // at 48 fixes the 43 pixels too, and breaks others the sample does not hold).
         let better_of = |ranked: Vec<(Variant, (f64, Vec<usize>))>| {
-            (ranked.into_iter().take(RANKED)).find_map(|top| better(Some(top)))
+            let best = ranked.first().map_or(0.0, |t| t.1.0);
+            (ranked
+                .into_iter()
+                .take_while(|t| t.1.0 >= best)
+                .take(RANKED))
+            .find_map(|top| better(Some(top)))
         };
         let shift = SHIFTS.contains(&first.kind);
         let top = match shift.then(|| scorer.left(first)).flatten() {
@@ -1185,7 +1190,10 @@ impl Scorer<'_> {
         let mut ranked: Vec<(Variant, (f64, Vec<usize>))> = (first_round.into_iter())
             .filter_map(|(partner, _)| Some((partner, estimate(1, partner)?)))
             .collect();
-        ranked.sort_by(|a, b| b.1.0.total_cmp(&a.1.0));
+        // Of stops estimated alike, the later first: it leaves out fewer records, so it
+        // makes no more pixels differ.
+        let line = |v: &Variant| (v.kind == Kind::StoppedAt).then_some(v.line).flatten();
+        ranked.sort_by(|a, b| (b.1.0.total_cmp(&a.1.0)).then(line(&b.0).cmp(&line(&a.0))));
         ranked
     }
 
