@@ -161,7 +161,8 @@ pub fn explain(
     let (found, mut focus, more) = scene_causes(case, mask);
     causes.extend(more);
     // Jitter is named once: the catalogue's seeded jitter, found in what the jitter read
-    // from the pixels' footprints leaves, is that jitter confirmed, not a second cause.
+    // from the pixels' footprints leaves, is that jitter confirmed, not a second cause
+    // (d06 jittered and scaled by 256 was told jitter twice).
     let seeded =
         |c: &Cause| !c.variants.is_empty() && c.variants.iter().all(|v| v.kind == Kind::Jitter);
     if causes
@@ -295,17 +296,15 @@ fn after_jitter(case: Case, cause: Cause, repaired: &Image, clean: bool) -> Opti
     let mask = (&mask[..], count);
     let (scene, options) = (case.scene, case.options);
     let (found, focus) = with_mask(scene, options, rendered, repaired, levels, mask, &explained);
-    // Jitter is named once: its seeded variant, found again in what remains, is not a
-    // second cause but jitter confirmed there (d06 jittered and scaled by 256 was told
-    // jitter twice).
-    // Nor is a rule of the bytes, which moves a byte by one level, read at the tolerance
+    // A rule of the bytes, which moves a byte by one level, is not read at the tolerance
     // jitter leaves: what it explains there is the jitter's (d01 a row off, jittered and
-    // scaled by 256 was told round-bytes on 4,655 pixels).
+    // scaled by 256 was told round-bytes on 4,655 pixels). The seeded jitter found again
+    // here stays, as support: [`explain`] names jitter once.
     let bytes = |c: &Cause| c.variants.iter().any(|v| v.kind.row().site == Site::Bytes);
-    let (again, rest): (Vec<Cause>, Vec<Cause>) = (stated(&found, count).into_iter())
+    let rest: Vec<Cause> = (stated(&found, count).into_iter())
         .filter(|c| levels == case.levels || !bytes(c))
-        .partition(|c| c.variants.iter().any(|v| v.kind == Kind::Jitter));
-    (clean || !again.is_empty() || !rest.is_empty()).then(|| {
+        .collect();
+    (clean || !rest.is_empty()).then(|| {
         let causes = std::iter::once(cause).chain(rest).collect();
         (found, focus, causes)
     })

@@ -425,10 +425,10 @@ pub(crate) fn with_mask(
         candidates.extend(near);
     };
     // A reader that stopped, tried at every record near the best of the stops tried.
-    let stops = first_round
+    let stops_tried = first_round
         .iter()
         .filter(|(v, _)| v[0].kind == Kind::StoppedAt);
-    if let Some(line) = stops
+    if let Some(line) = stops_tried
         .max_by(|a, b| a.1.total_cmp(&b.1))
         .and_then(|(v, _)| v[0].line)
     {
@@ -681,6 +681,34 @@ pub(crate) fn with_mask(
     // move, whose best partner the pair stage then looked for (a reader stopped at a far
     // wall, with or without the image turned over, in an image upside down whose far wall
     // is clipped): the move's best partner is looked for, and the parameter is not.
+    // A pair found by a search below, with its estimate and the large sample's pixels it
+    // fixes, kept where it agrees better than `than` (estimated, then exactly): listed
+    // first, with a pixel that `kept` alone leaves (so that it shows the other), and each
+    // of its variants alone for the causes' order.
+    type Estimated = ((f64, Vec<usize>), Vec<Variant>);
+    let adopt = |found: &mut Vec<Tried>, than: f64, ((estimated, fixed), pair): Estimated, kept| {
+        if estimated <= than {
+            return;
+        }
+        let Some((agreement, counts)) = exact(&pair).filter(|(a, _)| *a > than) else {
+            return;
+        };
+        let alone_fixed = estimate(&[kept]).map_or(Vec::new(), |(_, fixed)| fixed);
+        let pixel = pixel_of(&pair, &fixed, &alone_fixed);
+        let tried = Tried {
+            variants: pair.clone(),
+            agreement,
+            max_dist_range: None,
+            pixel,
+            counts: Some(counts),
+        };
+        found.insert(0, tried);
+        for one in pair {
+            if !found.iter().any(|t| t.variants == [one]) {
+                found.extend(alone(one, true));
+            }
+        }
+    };
     let continuous = |v: &&Variant| CONTINUOUS.contains(&v.kind) && v.line.is_none();
     if let Some(m) = best_moved
         && let Some(top) = found.first().filter(|t| t.agreement < 1.0).cloned()
@@ -731,30 +759,8 @@ pub(crate) fn with_mask(
         };
         let best = (by_value.into_iter().chain(by_partner))
             .max_by(|a, b| a.0.0.total_cmp(&b.0.0).then(std::cmp::Ordering::Greater));
-        if let Some(((estimated, fixed), pair)) = best
-            && estimated > top.agreement
-            && let Some((agreement, counts)) = exact(&pair)
-            && agreement > top.agreement
-        {
-            // The pair's pixel: one the move alone leaves, so that it shows the second.
-            let alone_fixed = estimate(&[m]).map_or(Vec::new(), |(_, fixed)| fixed);
-            let pixel = pixel_of(&pair, &fixed, &alone_fixed);
-            found.insert(
-                0,
-                Tried {
-                    variants: pair.clone(),
-                    agreement,
-                    max_dist_range: None,
-                    pixel,
-                    counts: Some(counts),
-                },
-            );
-            // Each alone too, for the causes' order.
-            for one in pair {
-                if !found.iter().any(|t| t.variants == [one]) {
-                    found.extend(alone(one, true));
-                }
-            }
+        if let Some(best) = best {
+            adopt(&mut found, top.agreement, best, m);
         }
     }
     // A reader's stop found beside another mistake is the line where the two together
@@ -762,7 +768,8 @@ pub(crate) fn with_mask(
     // line 42 with its far objects clipped was found as a stop at 30, the clip hiding
     // what the records from 30 on add): every stop is tried beside the partner, on the
     // small sample, the best few on the large one, and the best of those scored exactly.
-    if let Some(top) = (found.first()).filter(|t| t.agreement < 1.0 && t.variants.len() == 2)
+    let pair_first = (found.first()).filter(|t| t.agreement < 1.0 && t.variants.len() == 2);
+    if let Some(top) = pair_first.cloned()
         && let Some(k) = (top.variants.iter()).position(|v| v.kind == Kind::StoppedAt)
     {
         let with_stop = |stop: Variant| {
@@ -770,7 +777,7 @@ pub(crate) fn with_mask(
             pair[k] = stop;
             pair
         };
-        let mut round: Vec<(Vec<Variant>, f64)> = (self::stops(scene).into_iter())
+        let mut round: Vec<(Vec<Variant>, f64)> = (stops(scene).into_iter())
             .map(|line| Variant::of(Kind::StoppedAt).at(line))
             .filter(|&stop| stop != top.variants[k])
             .filter_map(|stop| Some((with_stop(stop), estimate_on(0, &with_stop(stop))?.0)))
@@ -780,27 +787,9 @@ pub(crate) fn with_mask(
         let best = (round.into_iter())
             .filter_map(|(pair, _)| Some((estimate(&pair)?, pair)))
             .max_by(|a, b| a.0.0.total_cmp(&b.0.0).then(std::cmp::Ordering::Greater));
-        if let Some(((estimated, fixed), pair)) = best
-            && estimated > top.agreement
-            && let Some((agreement, counts)) = exact(&pair)
-            && agreement > top.agreement
-        {
-            let stop = pair[k];
-            let alone_fixed = estimate(&[pair[1 - k]]).map_or(Vec::new(), |(_, fixed)| fixed);
-            let pixel = pixel_of(&pair, &fixed, &alone_fixed);
-            found.insert(
-                0,
-                Tried {
-                    variants: pair,
-                    agreement,
-                    max_dist_range: None,
-                    pixel,
-                    counts: Some(counts),
-                },
-            );
-            if !found.iter().any(|t| t.variants == [stop]) {
-                found.extend(alone(stop, true));
-            }
+        if let Some(best) = best {
+            let partner = top.variants[1 - k];
+            adopt(&mut found, top.agreement, best, partner);
         }
     }
     // The counts of the one that went without (MAX_DIST's), for the causes.
