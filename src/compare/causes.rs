@@ -236,7 +236,7 @@ fn scene_causes(case: Case, mask: (&[u64], usize)) -> SceneCauses {
     // inside it; where they leave more, jitter stands only if another cause explains the
     // rest (an object moved by a pixel or two looks jittered on its shading).
     let clean =
-        (in_place.as_ref()).is_some_and(|(c, _)| c.explains as f64 >= NEARLY_ALL * c.of as f64);
+        (in_place.as_ref()).is_some_and(|(c, ..)| c.explains as f64 >= NEARLY_ALL * c.of as f64);
     // 4. Where jitter in place is not found or leaves more, jittered rays also written a
     // row off (in place, a row off lies within the pixel's footprint on half its edges):
     // jitter read against the reference moved as the best move says.
@@ -244,8 +244,8 @@ fn scene_causes(case: Case, mask: (&[u64], usize)) -> SceneCauses {
         causes.extend(pair);
         return (found, focus, causes);
     }
-    if let Some((cause, repaired)) = in_place
-        && let Some(after) = after_jitter(case, cause, &repaired, clean)
+    if let Some((cause, repaired, off)) = in_place
+        && let Some(after) = after_jitter(case, (cause, &repaired, off), clean)
     {
         causes.extend(after.2);
         return (after.0, after.1, causes);
@@ -254,8 +254,8 @@ fn scene_causes(case: Case, mask: (&[u64], usize)) -> SceneCauses {
     // within the reference's footprints: jitter read against the image of the best
     // candidate, then the rest diagnosed again against the reference.
     match jitter_through(case, mask, &found) {
-        Some(Through::First(cause, repaired)) => {
-            if let Some(after) = after_jitter(case, cause, &repaired, false) {
+        Some(Through::First(cause, repaired, off)) => {
+            if let Some(after) = after_jitter(case, (cause, &repaired, off), false) {
                 causes.extend(after.2);
                 return (after.0, after.1, causes);
             }
@@ -275,9 +275,20 @@ fn scene_causes(case: Case, mask: (&[u64], usize)) -> SceneCauses {
 /// diagnosed again at the tolerance jitter leaves: the candidates, where they
 /// concentrate, and the causes, jitter first; `None` where nothing is stated beside a
 /// jitter that is not `clean` (that leaves more than a twentieth).
-fn after_jitter(case: Case, cause: Cause, repaired: &Image, clean: bool) -> Option<SceneCauses> {
+fn after_jitter(
+    case: Case,
+    (cause, repaired, off): (Cause, &Image, LevelOff),
+    clean: bool,
+) -> Option<SceneCauses> {
     let (rendered, student) = (case.rendered, case.student);
     let reference = &rendered.image;
+    // Where what jitter leaves looks like a rule of the bytes, the rule beside it, read
+    // at the student's own tolerance.
+    if rule_suspected(&cause, off)
+        && let Some(causes) = rule_beside_jitter(case)
+    {
+        return Some((Vec::new(), None, causes));
+    }
     // Under jittered rays a pixel a second mistake changes is that mistake's colour seen
     // from elsewhere in the pixel: on smooth shading, a few levels off.
     let levels = case.levels.max(JITTERED_LEVELS);
@@ -310,6 +321,148 @@ fn after_jitter(case: Case, cause: Cause, repaired: &Image, clean: bool) -> Opti
     })
 }
 
+/// Whether what a reading of jitter (`cause`) left looks like a rule of the bytes beside
+/// it: at least [`RULE_LEFT`] of the differing pixels, half of them at most a level past
+/// what the reference takes inside the pixel (`off`). A rule moves a byte by one, past
+/// the footprint's colours where they are flat; what jittered rays alone leave is a few
+/// pixels on edges and mirrors, where the footprint's samples missed a colour.
+fn rule_suspected(cause: &Cause, off: LevelOff) -> bool {
+    let left = cause.of.saturating_sub(cause.explains);
+    left as f64 >= RULE_LEFT * cause.of as f64 && off.left > 0 && 2 * off.near >= off.left
+}
+
+/// The share of the differing pixels jittered rays, read in place, must leave for a rule
+/// of the bytes beside them to be looked for ([`rule_suspected`]). Alone, they leave
+/// 0.2 % to 0.35 % on the course scenes at 320x240 (d04 38 of 22,054 pixels, d06 112 of
+/// 32,149), but spec1 1.3 % (416 of 32,362, 278 of them a level past: its mirrors), whose
+/// rules are then read in vain; with a rule of the bytes, 3.6 % and more (d04 scaled 841
+/// of 23,227, 829 a level past; examples/shadows.txt at 160x120, 1.5 %).
+const RULE_LEFT: f64 = 0.01;
+
+/// Jittered rays and a rule of the bytes (d06 jittered and scaled by 256: jitter read
+/// against the reference left 1,848 of 34,931 pixels, each a level or two off, which the
+/// tolerance the diagnosis after jitter reads at cannot see): jitter read again against
+/// the reference under each rule (its bytes stepped as its paths say, no ray traced but
+/// the footprints'); where under one rule it leaves at most half the pixels it leaves
+/// under the other, and the two explain nearly every differing pixel and break almost
+/// none, jitter and that rule, with their counts against the reference: the one that
+/// explains half first, jitter the differing pixels it reads within the footprints, the
+/// rule those its image gives, and the agreeing pixels that neither gives as the rule's
+/// breaks.
+fn rule_beside_jitter(case: Case) -> Option<Vec<Cause>> {
+    let (rendered, student, levels) = (case.rendered, case.student, case.levels);
+    let reference = &rendered.image;
+    let pixels = reference.pixels.len();
+    if rendered.paths.len() != pixels {
+        return None;
+    }
+    let own = |i: usize| Some(i);
+    let under = |rule: Kind| {
+        let options = case.options.with_variant(Variant::of(rule)).ok()?;
+        let steps = super::Steps::of(Some(rule));
+        let bytes = (rendered.paths.iter().zip(&reference.pixels))
+            .map(|(&paths, &bytes)| steps.apply(paths, bytes))
+            .collect();
+        let image = Image {
+            pixels: bytes,
+            ..*reference
+        };
+        let mask = differing(&image, student, levels);
+        let (mask, count) = (&mask.0[..], mask.1);
+        let (cause, repaired, _) = jitter_cause(
+            case.scene,
+            &options,
+            &image,
+            student,
+            levels,
+            (mask, count),
+            &own,
+        )?;
+        Some((rule, image, repaired, count - cause.explains))
+    };
+    // The rule under which jitter leaves fewer pixels, where it leaves at most half as
+    // many as under the other (examples/shadows.txt rounded: 23 pixels, 133 scaled).
+    let [a, b] = [Kind::RoundBytes, Kind::Scale256].map(under);
+    let leaves = |r: &Option<(Kind, Image, Image, usize)>| r.as_ref().map_or(usize::MAX, |r| r.3);
+    let (best, other) = match leaves(&a) <= leaves(&b) {
+        true => (a, leaves(&b)),
+        false => (b, leaves(&a)),
+    };
+    let (rule, image, repaired, left) = best?;
+    if left.saturating_mul(2) > other {
+        return None;
+    }
+    let (mask, count) = differing(reference, student, levels);
+    let jittered = |i: usize| repaired.pixels[i] != student.pixels[i];
+    let given = |i: usize| within(image.pixels[i], student.pixels[i], levels);
+    // Which pixels each explains: jitter those it reads within the footprints, the rule
+    // those its image gives; and the agreeing pixels neither gives, which the rule breaks.
+    let [mut both, mut jitter_only, mut rule_only, mut breaks] = [0usize; 4];
+    let [mut jitter_pixel, mut rule_pixel] = [None; 2];
+    for i in 0..pixels {
+        match (is_set(&mask, i), jittered(i), given(i)) {
+            (true, true, true) => both += 1,
+            (true, true, false) => {
+                jitter_only += 1;
+                jitter_pixel.get_or_insert(i);
+            }
+            (true, false, true) => {
+                rule_only += 1;
+                rule_pixel.get_or_insert(i);
+            }
+            (false, false, false) => breaks += 1,
+            _ => {}
+        }
+    }
+    if (((both + jitter_only + rule_only) as f64) < NEARLY_ALL * count as f64)
+        || breaks * BREAKS_PER_FIX > both + rule_only
+    {
+        return None;
+    }
+    // The one that explains half first, with the pixels both explain; the other the rest
+    // (at 640x480, d06's scaled bytes change more pixels than its jittered rays).
+    let jitter_first = 2 * (both + jitter_only) >= count;
+    let (jitter_explains, rule_explains) = match jitter_first {
+        true => (both + jitter_only, rule_only),
+        false => (jitter_only, both + rule_only),
+    };
+    let (jitter_of, rule_of) = match jitter_first {
+        true => (count, count - jitter_explains),
+        false => (count - rule_explains, count),
+    };
+    if !supported(rule_explains, rule_of, breaks) || !supported(jitter_explains, jitter_of, 0) {
+        return None;
+    }
+    let (w, h) = (reference.width, reference.height);
+    let at = |i: Option<usize>| i.map(|i| super::pixel_at(i, w, h));
+    let jitter = Cause::of_images(
+        JITTER.into(),
+        "the camera rays look jittered, or aimed elsewhere inside their pixel: these \
+                differing pixels lie within what the reference takes inside their pixel, \
+                under the rule of the bytes named beside"
+            .into(),
+        [jitter_explains, jitter_of, 0],
+        at(jitter_pixel),
+    );
+    let variants = vec![Variant::of(rule)];
+    let rule = Cause {
+        id: ids(&variants),
+        about: variants[0].describe(),
+        variants,
+        explains: rule_explains,
+        of: rule_of,
+        breaks,
+        subject: None,
+        pixel: at(rule_pixel),
+        under: Vec::new(),
+        trace: None,
+    };
+    Some(match jitter_first {
+        true => vec![jitter, rule],
+        false => vec![rule, jitter],
+    })
+}
+
 /// The candidates, where the differences concentrate, and the causes.
 type SceneCauses = (Vec<Diagnosis>, Option<Focus>, Vec<Cause>);
 
@@ -318,7 +471,7 @@ enum Through {
     /// Jitter, counted on the pixels it gives the reference's bytes, and the student's
     /// image with the pixels it explains given the candidate's, for the second mistake to
     /// be found in.
-    First(Cause, Image),
+    First(Cause, Image, LevelOff),
     /// The candidate, then jitter: where jitter's own pixels are too few to state it
     /// first (the candidate changes nearly every pixel, as square-falloff does).
     Second([Cause; 2]),
@@ -336,9 +489,36 @@ fn jitter_through(
     (mask, count): (&[u64], usize),
     found: &[Diagnosis],
 ) -> Option<Through> {
+    let best = found.first()?;
+    // A scene variant paired with a kernel (textbook: every ray's rounding otherwise)
+    // reads as jitter's own pixels, which the kernel's moves at edges mimic: the scene
+    // variant alone is read first (d05 jittered with its lights' falloff squared was
+    // told square-falloff with textbook, then jitter).
+    let kernel = |v: &Variant| v.kind.row().site == Site::Option;
+    if let [a, b] = best.variants[..]
+        && kernel(&a) != kernel(&b)
+    {
+        let one = if kernel(&a) { b } else { a };
+        let alone = found.iter().find(|d| d.variants == [one]);
+        let shown = alone.map_or((None, None), |d| (d.subject.clone(), d.pixel));
+        if let Some(through) = jitter_through_image(case, (mask, count), &[one], shown) {
+            return Some(through);
+        }
+    }
+    let shown = (best.subject.clone(), best.pixel);
+    jitter_through_image(case, (mask, count), &best.variants, shown)
+}
+
+/// [`jitter_through`] with the image of `variants`, shown by the subject and pixel of
+/// `shown` where it is the candidate stated first.
+fn jitter_through_image(
+    case: Case,
+    (mask, count): (&[u64], usize),
+    variants: &[Variant],
+    (subject, pixel): (Option<String>, Option<[usize; 2]>),
+) -> Option<Through> {
     let (options, student, levels) = (case.options, case.student, case.levels);
     let reference = &case.rendered.image;
-    let variants = &found.first()?.variants;
     let moves = |v: &Variant| v.kind.row().site == Site::Camera;
     if variants.iter().any(moves) {
         return None;
@@ -347,7 +527,7 @@ fn jitter_through(
     let image = render::render(case.scene, &with, |_| {});
     let (off, off_count) = differing(&image, student, levels);
     let own = |i: usize| Some(i);
-    let (cause, repaired) = jitter_cause(
+    let (cause, repaired, off) = jitter_cause(
         case.scene,
         &with,
         &image,
@@ -369,7 +549,7 @@ fn jitter_through(
             of: count,
             ..cause
         };
-        return Some(Through::First(cause, repaired));
+        return Some(Through::First(cause, repaired, off));
     }
     // The candidate's own pixels, those jitter explains of the rest, and the agreeing
     // pixels neither gives.
@@ -386,18 +566,17 @@ fn jitter_through(
     if (together as f64) < NEARLY_ALL * count as f64 || breaks * BREAKS_PER_FIX > together {
         return None;
     }
-    let best = &found[0];
     let first = Cause {
         id: ids(variants),
-        variants: variants.clone(),
+        variants: variants.to_vec(),
         about: (variants.iter().map(|v| v.describe()))
             .collect::<Vec<_>>()
             .join("; "),
         explains: fixed,
         of: count,
         breaks,
-        subject: best.subject.clone(),
-        pixel: best.pixel,
+        subject,
+        pixel,
         under: Vec::new(),
         trace: None,
     };
@@ -452,7 +631,7 @@ fn moved_jitter(
         }
     }
     let left = (&left[..], left_count);
-    let (jitter, repaired) =
+    let (jitter, repaired, _) =
         jitter_cause(case.scene, options, reference, student, levels, left, &from)?;
     // Whether jitter explains pixel i: it was given the moved reference's bytes.
     let repaired_at = |i: usize| student.pixels[i] != repaired.pixels[i];
@@ -1013,7 +1192,7 @@ fn jitter_cause(
     levels: u8,
     (mask, count): (&[u64], usize),
     from: &dyn Fn(usize) -> Option<usize>,
-) -> Option<(Cause, Image)> {
+) -> Option<(Cause, Image, LevelOff)> {
     let (w, h) = (options.width, options.height);
     let every = count.div_ceil(JITTER_PIXELS).max(1);
     let differs = |i: usize| is_set(mask, i);
@@ -1055,10 +1234,13 @@ fn jitter_cause(
         };
         // Whether the student's pixel i lies within what the reference takes inside the
         // pixel, per channel, within the tolerance: the samples stop once it does.
+        // Of the pixels read and left, those at most a level past what the reference
+        // takes inside the pixel, and how many were left.
+        let level_off = std::cell::Cell::new(LevelOff::default());
         let consistent = |i: usize| {
             let s = student.pixels[i];
             let (mut low, mut high) = ([255u8; 3], [0u8; 3]);
-            samples(i).any(|bytes| {
+            let within = samples(i).any(|bytes| {
                 for c in 0..3 {
                     low[c] = low[c].min(bytes[c]);
                     high[c] = high[c].max(bytes[c]);
@@ -1066,7 +1248,22 @@ fn jitter_cause(
                 (0..3).all(|c| {
                     s[c].saturating_add(levels) >= low[c] && s[c] <= high[c].saturating_add(levels)
                 })
-            })
+            });
+            if !within {
+                let past = (0..3)
+                    .map(|c| {
+                        let below = low[c].saturating_sub(s[c].saturating_add(levels));
+                        below.max(s[c].saturating_sub(high[c].saturating_add(levels)))
+                    })
+                    .max()
+                    .unwrap_or(0);
+                let LevelOff { near, left } = level_off.get();
+                level_off.set(LevelOff {
+                    near: near + usize::from(past <= 1),
+                    left: left + 1,
+                });
+            }
+            within
         };
         // Whether the reference varies by more than the tolerance inside pixel i.
         let varies = |i: usize| {
@@ -1131,8 +1328,17 @@ fn jitter_cause(
             [explains, count, 0],
             (repair.first()).map(|&i| super::pixel_at(i, w, h)),
         );
-        Some((cause, repaired))
+        Some((cause, repaired, level_off.get()))
     })
+}
+
+/// Of the differing pixels a reading of jitter left (each outside what the reference
+/// takes inside its pixel), how many lie at most a level past it: a rule of the bytes
+/// beside jittered rays moves a byte by one ([`rule_suspected`]).
+#[derive(Debug, Clone, Copy, Default)]
+struct LevelOff {
+    near: usize,
+    left: usize,
 }
 
 #[cfg(test)]
