@@ -76,6 +76,29 @@ impl Cause {
         }
     }
 
+    /// A cause the catalogue's `variants` render, with what each does in words.
+    fn of_variants(
+        variants: &[Variant],
+        [explains, of, breaks]: [usize; 3],
+        subject: Option<String>,
+        pixel: Option<[usize; 2]>,
+    ) -> Cause {
+        Cause {
+            id: ids(variants),
+            variants: variants.to_vec(),
+            about: (variants.iter().map(|v| v.describe()))
+                .collect::<Vec<_>>()
+                .join("; "),
+            explains,
+            of,
+            breaks,
+            subject,
+            pixel,
+            under: Vec::new(),
+            trace: None,
+        }
+    }
+
     /// Whether the cause lies only in how the image is written, the rays and their
     /// colours the reference's: rows, columns or axes moved, or the bytes' rule. A
     /// student's debug trace, ray by ray, then agrees with the reference.
@@ -359,9 +382,8 @@ fn rule_beside_jitter(case: Case) -> Option<Vec<Cause>> {
     let own = |i: usize| Some(i);
     let under = |rule: Kind| {
         let options = case.options.with_variant(Variant::of(rule)).ok()?;
-        let steps = super::Steps::of(Some(rule));
         let bytes = (rendered.paths.iter().zip(&reference.pixels))
-            .map(|(&paths, &bytes)| steps.apply(paths, bytes))
+            .map(|(&paths, &bytes)| paths.bytes(Some(rule), bytes))
             .collect();
         let image = Image {
             pixels: bytes,
@@ -444,19 +466,8 @@ fn rule_beside_jitter(case: Case) -> Option<Vec<Cause>> {
         [jitter_explains, jitter_of, 0],
         at(jitter_pixel),
     );
-    let variants = vec![Variant::of(rule)];
-    let rule = Cause {
-        id: ids(&variants),
-        about: variants[0].describe(),
-        variants,
-        explains: rule_explains,
-        of: rule_of,
-        breaks,
-        subject: None,
-        pixel: at(rule_pixel),
-        under: Vec::new(),
-        trace: None,
-    };
+    let counts = [rule_explains, rule_of, breaks];
+    let rule = Cause::of_variants(&[Variant::of(rule)], counts, None, at(rule_pixel));
     Some(match jitter_first {
         true => vec![jitter, rule],
         false => vec![rule, jitter],
@@ -566,20 +577,7 @@ fn jitter_through_image(
     if (together as f64) < NEARLY_ALL * count as f64 || breaks * BREAKS_PER_FIX > together {
         return None;
     }
-    let first = Cause {
-        id: ids(variants),
-        variants: variants.to_vec(),
-        about: (variants.iter().map(|v| v.describe()))
-            .collect::<Vec<_>>()
-            .join("; "),
-        explains: fixed,
-        of: count,
-        breaks,
-        subject,
-        pixel,
-        under: Vec::new(),
-        trace: None,
-    };
+    let first = Cause::of_variants(variants, [fixed, count, breaks], subject, pixel);
     let second = Cause {
         explains: rest,
         of: count - fixed,
@@ -838,21 +836,10 @@ fn stated(found: &[Diagnosis], differing: usize) -> Vec<Cause> {
             true => before.to_vec(),
             false => Vec::new(),
         };
+        let subject = found_alone(variants).and_then(|d| d.subject.clone());
         Cause {
-            id: ids(variants),
-            subject: found_alone(variants).and_then(|d| d.subject.clone()),
-            pixel,
             under,
-            trace: None,
-            variants: variants.to_vec(),
-            about: variants
-                .iter()
-                .map(|v| v.describe())
-                .collect::<Vec<_>>()
-                .join("; "),
-            explains,
-            of,
-            breaks,
+            ..Cause::of_variants(variants, [explains, of, breaks], subject, pixel)
         }
     };
     let alone = |variants: &[Variant]| found_alone(variants).and_then(counts);
@@ -1232,11 +1219,11 @@ fn jitter_cause(
                 })
             })
         };
-        // Whether the student's pixel i lies within what the reference takes inside the
-        // pixel, per channel, within the tolerance: the samples stop once it does.
         // Of the pixels read and left, those at most a level past what the reference
         // takes inside the pixel, and how many were left.
         let level_off = std::cell::Cell::new(LevelOff::default());
+        // Whether the student's pixel i lies within what the reference takes inside the
+        // pixel, per channel, within the tolerance: the samples stop once it does.
         let consistent = |i: usize| {
             let s = student.pixels[i];
             let (mut low, mut high) = ([255u8; 3], [0u8; 3]);
