@@ -376,19 +376,9 @@ fn rule_beside_jitter(case: Case) -> Option<Vec<Cause>> {
     let (rendered, student, levels) = (case.rendered, case.student, case.levels);
     let reference = &rendered.image;
     let pixels = reference.pixels.len();
-    if rendered.paths.len() != pixels {
-        return None;
-    }
     let own = |i: usize| Some(i);
     let under = |rule: Kind| {
-        let options = case.options.with_variant(Variant::of(rule)).ok()?;
-        let bytes = (rendered.paths.iter().zip(&reference.pixels))
-            .map(|(&paths, &bytes)| paths.bytes(Some(rule), bytes))
-            .collect();
-        let image = Image {
-            pixels: bytes,
-            ..*reference
-        };
+        let (options, image) = under_rule(case, rule)?;
         let mask = differing(&image, student, levels);
         let (mask, count) = (&mask.0[..], mask.1);
         let (cause, repaired, _) = jitter_cause(
@@ -472,6 +462,25 @@ fn rule_beside_jitter(case: Case) -> Option<Vec<Cause>> {
         true => vec![jitter, rule],
         false => vec![rule, jitter],
     })
+}
+
+/// The options that render `rule` (round-bytes or scale-256) and the reference's image
+/// under it, its bytes stepped as its paths say (no ray traced); `None` where the
+/// reference was rendered without paths.
+fn under_rule(case: Case, rule: Kind) -> Option<(Options, Image)> {
+    let (rendered, reference) = (case.rendered, &case.rendered.image);
+    if rendered.paths.len() != reference.pixels.len() {
+        return None;
+    }
+    let options = case.options.with_variant(Variant::of(rule)).ok()?;
+    let pixels = (rendered.paths.iter().zip(&reference.pixels))
+        .map(|(&paths, &bytes)| paths.bytes(Some(rule), bytes))
+        .collect();
+    let image = Image {
+        pixels,
+        ..*reference
+    };
+    Some((options, image))
 }
 
 /// The candidates, where the differences concentrate, and the causes.
@@ -615,22 +624,30 @@ fn moved_jitter(
     let agrees_moved =
         |i: usize| from(i).is_none_or(|j| within(reference.pixels[j], student.pixels[i], levels));
     // What the moved reference leaves differing, and how many pixels it fixes and breaks.
-    let mut left = vec![0u64; pixels.div_ceil(64)];
-    let (mut left_count, mut fixed, mut broken) = (0usize, 0usize, 0usize);
-    for i in 0..pixels {
-        match (differs(i), agrees_moved(i)) {
-            (true, true) => fixed += 1,
-            (was, false) => {
-                left[i / 64] |= 1 << (i % 64);
-                left_count += 1;
-                broken += usize::from(!was);
-            }
-            (false, true) => {}
-        }
-    }
+    let Moved {
+        left,
+        count: left_count,
+        fixed,
+        broken,
+    } = Moved::of(reference, case, mask, &from);
     let left = (&left[..], left_count);
-    let (jitter, repaired, _) =
-        jitter_cause(case.scene, options, reference, student, levels, left, &from)?;
+    let read = jitter_cause(case.scene, options, reference, student, levels, left, &from);
+    // Where jitter cannot be read against the moved reference (a rule of the bytes moves
+    // most of its bytes) or leaves what looks like a rule, the rule beside the two.
+    let leaves = read.as_ref().map(|(c, ..)| left_count - c.explains);
+    let suspected = match &read {
+        Some((c, _, off)) => rule_suspected(c, *off),
+        // Most of what the move leaves a level off (a rule moves every byte it changes
+        // by one: 92 % and more of those pixels on the course scenes with a move, jitter
+        // and a rule; with a mistake of the scene instead, 39 % at most).
+        None => 2 * Moved::near(reference, case, left.0, &from) >= left_count,
+    };
+    if suspected
+        && let Some(causes) = moved_rule_jitter(case, (mask, count), (first, pixel), &from, leaves)
+    {
+        return Some(causes);
+    }
+    let (jitter, repaired, _) = read?;
     // Whether jitter explains pixel i: it was given the moved reference's bytes.
     let repaired_at = |i: usize| student.pixels[i] != repaired.pixels[i];
     // Of what the move leaves, the differing pixels jitter explains and the agreeing ones
@@ -690,6 +707,169 @@ fn moved_jitter(
         ..jitter
     };
     Some([shift, jitter].into_iter().chain(third).collect())
+}
+
+/// What an image moved as a move says (`from`: where each pixel of the student's image
+/// comes from) leaves of the student's: the pixels it leaves differing, how many, and of
+/// the differing pixels of `mask` how many it gives, of the agreeing how many it breaks.
+struct Moved {
+    left: Vec<u64>,
+    count: usize,
+    fixed: usize,
+    broken: usize,
+}
+
+impl Moved {
+    /// Of the pixels `left` marks, how many lie at most a level past `image` moved as
+    /// `from` says, beyond the tolerance.
+    fn near(
+        image: &Image,
+        case: Case,
+        left: &[u64],
+        from: &dyn Fn(usize) -> Option<usize>,
+    ) -> usize {
+        let (student, levels) = (case.student, case.levels);
+        let mut near = 0;
+        for_each_set(left, |i| {
+            let Some(j) = from(i) else { return };
+            let (a, b) = (image.pixels[j], student.pixels[i]);
+            near += usize::from((0..3).all(|c| a[c].abs_diff(b[c]) <= levels.saturating_add(1)));
+        });
+        near
+    }
+
+    fn of(image: &Image, case: Case, mask: &[u64], from: &dyn Fn(usize) -> Option<usize>) -> Moved {
+        let (student, levels) = (case.student, case.levels);
+        let pixels = image.pixels.len();
+        let agrees =
+            |i: usize| from(i).is_none_or(|j| within(image.pixels[j], student.pixels[i], levels));
+        let mut moved = Moved {
+            left: vec![0u64; pixels.div_ceil(64)],
+            count: 0,
+            fixed: 0,
+            broken: 0,
+        };
+        for i in 0..pixels {
+            match (is_set(mask, i), agrees(i)) {
+                (true, true) => moved.fixed += 1,
+                (was, false) => {
+                    moved.left[i / 64] |= 1 << (i % 64);
+                    moved.count += 1;
+                    moved.broken += usize::from(!was);
+                }
+                (false, true) => {}
+            }
+        }
+        moved
+    }
+}
+
+/// A move (`first`, with the pixel its candidate shows), jittered rays and a rule of the
+/// bytes: a program that writes every row a row off, jitters its rays and rounds its
+/// bytes (d06 so, at 320x240, was told the move and jitter, the rule's pixels counted for
+/// them; with scale-256, whose bytes are most a level off, jitter could not be read and
+/// d05 was told nothing). Jitter is read again against the moved reference under each
+/// rule ([`under_rule`]); the rule under which it leaves at most half as many pixels as
+/// under the other and as without a rule (`leaves`, `None` where it could not be read) is
+/// stated with the move and jitter where the three explain nearly every differing pixel
+/// of `mask` and break almost none. The move explains the differing pixels the moved
+/// reference gives, the rule those its moved image gives besides, jitter those it reads
+/// within the footprints of the rest (the larger of the two first, after the move); the
+/// agreeing pixels none gives are the move's breaks.
+fn moved_rule_jitter(
+    case: Case,
+    (mask, count): (&[u64], usize),
+    (first, pixel): (Variant, Option<[usize; 2]>),
+    from: &dyn Fn(usize) -> Option<usize>,
+    leaves: Option<usize>,
+) -> Option<Vec<Cause>> {
+    let (student, levels) = (case.student, case.levels);
+    let reference = &case.rendered.image;
+    let under = |rule: Kind| {
+        let (options, image) = under_rule(case, rule)?;
+        let moved = Moved::of(&image, case, mask, from);
+        let left = (&moved.left[..], moved.count);
+        let (jitter, repaired, _) =
+            jitter_cause(case.scene, &options, &image, student, levels, left, from)?;
+        let leaves = moved.count - jitter.explains;
+        Some((rule, image, moved, jitter, repaired, leaves))
+    };
+    let [a, b] = [Kind::RoundBytes, Kind::Scale256].map(under);
+    let leaves_of = |r: &Option<(Kind, Image, Moved, Cause, Image, usize)>| {
+        r.as_ref().map_or(usize::MAX, |r| r.5)
+    };
+    let (best, other) = match leaves_of(&a) <= leaves_of(&b) {
+        true => (a, leaves_of(&b)),
+        false => (b, leaves_of(&a)),
+    };
+    let (rule, image, moved, jitter, repaired, left) = best?;
+    if left.saturating_mul(2) > other.min(leaves.unwrap_or(usize::MAX)) {
+        return None;
+    }
+    let gives = |image: &Image, i: usize| {
+        from(i).is_none_or(|j| within(image.pixels[j], student.pixels[i], levels))
+    };
+    let jittered = |i: usize| repaired.pixels[i] != student.pixels[i];
+    // Where every pixel jitter left was traced, each is counted; else jitter's share of
+    // its sample stands for what it explains of the differing and agreeing pixels left.
+    let all = moved.count <= JITTER_REPAIR;
+    let share = |n: usize| jitter.explains * n / moved.count.max(1);
+    let [mut shift, mut ruled, mut jitters, mut breaks] = [0usize; 4];
+    let [mut left_differing, mut left_agreeing] = [0usize; 2];
+    let [mut rule_pixel, mut jitter_pixel] = [None; 2];
+    for i in 0..reference.pixels.len() {
+        let differs = is_set(mask, i);
+        match (differs, gives(reference, i), gives(&image, i)) {
+            (true, true, _) => shift += 1,
+            (true, false, true) => {
+                ruled += 1;
+                rule_pixel.get_or_insert(i);
+            }
+            (_, _, true) => {}
+            (_, _, false) if !all => match differs {
+                true => left_differing += 1,
+                false => left_agreeing += 1,
+            },
+            (true, _, false) if jittered(i) => {
+                jitters += 1;
+                jitter_pixel.get_or_insert(i);
+            }
+            (false, _, false) if !jittered(i) => breaks += 1,
+            _ => {}
+        }
+    }
+    if !all {
+        jitters = share(left_differing);
+        breaks = left_agreeing - share(left_agreeing);
+    }
+    let explained = shift + ruled + jitters;
+    if (explained as f64) < NEARLY_ALL * count as f64 || breaks * BREAKS_PER_FIX > explained {
+        return None;
+    }
+    let (w, h) = (reference.width, reference.height);
+    let at = |i: Option<usize>| i.map(|i| super::pixel_at(i, w, h));
+    let shift = Cause::of_variants(&[first], [shift, count, breaks], None, pixel);
+    let rest = count - shift.explains;
+    let rule = Cause {
+        under: vec![first],
+        ..Cause::of_variants(&[Variant::of(rule)], [ruled, rest, 0], None, at(rule_pixel))
+    };
+    let jitter = Cause {
+        explains: jitters,
+        of: rest,
+        breaks: 0,
+        pixel: if all { at(jitter_pixel) } else { jitter.pixel },
+        under: vec![first],
+        ..jitter
+    };
+    // The larger of the two after the move, the other of what it leaves.
+    let (second, mut third) = match rule.explains >= jitter.explains {
+        true => (rule, jitter),
+        false => (jitter, rule),
+    };
+    third.of = rest - second.explains;
+    (supported(second.explains, second.of, 0) && supported(third.explains, third.of, 0))
+        .then(|| vec![shift, second, third])
 }
 
 /// A third cause, after a move (`first`) and jittered rays read against the reference it

@@ -1,8 +1,10 @@
 //! The comparison report as text, as `legacy-rt compare` prints it and the web page
 //! shows it.
 
+use super::causes::Cause;
 use super::{Report, Verdict};
 use crate::Options;
+use crate::render::variant::Site;
 use crate::render::variant::output_row;
 use crate::render::{Choices, Variant};
 
@@ -328,32 +330,48 @@ pub fn diagnosis(report: &Report) -> Vec<String> {
         if let [first, second, ..] = causes
             && !super::causes::supported(first.explains, first.of, first.breaks)
         {
+            // Jitter read against the image the first moves, with a rule of the bytes
+            // read so too where there is one: found together, from the images, and
+            // counted together.
+            let read = |c: &&Cause| {
+                let bytes = c.variants.iter().all(|v| v.kind.row().site == Site::Bytes);
+                !c.under.is_empty() && c.under == first.variants && bytes
+            };
+            let moved: Vec<&Cause> = causes[1..].iter().take_while(read).take(2).collect();
+            let moved_jitter = moved.iter().any(|c| c.variants.is_empty());
+            let together = match moved_jitter {
+                true => &causes[..=moved.len()],
+                false => &causes[..2],
+            };
             let both: Vec<Variant> = (first.variants.iter().chain(&second.variants))
                 .copied()
                 .collect();
-            let pair =
-                (diagnosis.iter()).find(|d| both.len() == 2 && same_variants(&d.variants, &both));
+            let pair = (diagnosis.iter())
+                .find(|d| !moved_jitter && both.len() == 2 && same_variants(&d.variants, &both));
             let (explains, breaks) = match pair.and_then(|p| Some((p.explains?, p.breaks?))) {
                 Some(counts) => counts,
                 None => (
-                    first.explains + second.explains,
-                    first.breaks + second.breaks,
+                    together.iter().map(|c| c.explains).sum(),
+                    together.iter().map(|c| c.breaks).sum(),
                 ),
             };
-            // Jitter read against the image the first moves: found together, from the
-            // images.
-            let moved_jitter = second.variants.is_empty()
-                && !second.under.is_empty()
-                && second.under == first.variants;
-            let why = match moved_jitter {
-                true => {
+            let which = match together.len() {
+                2 => "1 and 2",
+                _ => "1, 2 and 3",
+            };
+            let why = match (moved_jitter, together.len()) {
+                (true, 2) => {
                     "the move leaves every jittered pixel, and jitter read in place meets \
                          another pixel's ray"
                 }
-                false => "neither alone makes half of them agree without breaking others",
+                (true, _) => {
+                    "the move leaves every jittered pixel and every byte the rule stepped, and \
+                         jitter read in place meets another pixel's ray"
+                }
+                (false, _) => "neither alone makes half of them agree without breaking others",
             };
             line(format!(
-                "  (1 and 2 hide each other's pixels: {why}; together they explain {} of {} and \
+                "  ({which} hide each other's pixels: {why}; together they explain {} of {} and \
                  break {})",
                 thousands(explains),
                 thousands(first.of),

@@ -1531,3 +1531,61 @@ fn jittered_rays_beside_a_mistake_of_the_scene_name_no_kernel() {
     }
     assert!(failures.is_empty(), "{failures:#?}");
 }
+
+#[test]
+fn a_row_off_jittered_rays_and_a_rule_of_the_bytes_are_all_named() {
+    // The real program that writes every row one row off and jitters its rays, with its
+    // bytes rounded (or scaled by 256) besides, drawn by the tiny tracer. Jitter read
+    // against the moved reference leaves every byte the rule moved past what the
+    // reference takes inside the pixel (scaled by 256, most bytes: jitter could not be
+    // read at all). On the old code all eight were told the move and jitter, or nothing.
+    let dir = folder("causes-row-jitter-bytes");
+    let mut scenes = vec![example("shadows"), example("tube")];
+    scenes.extend(["a02", "a04"].into_iter().filter_map(course));
+    let count = |cause: &Value, key: &str| cause[key].as_u64().unwrap();
+    let mut failures = Vec::new();
+    for scene in &scenes {
+        for id in ["scale-256", "round-bytes"] {
+            let mut mistakes = Mistakes {
+                row_offset: 1,
+                jitter: Some(11),
+                ..Mistakes::default()
+            };
+            match id {
+                "scale-256" => mistakes.scale_256 = true,
+                _ => mistakes.round_bytes = true,
+            }
+            let (found, json) = drawn(&dir, scene, mistakes);
+            let listed = json["causes"].as_array().cloned().unwrap_or_default();
+            let mut sorted = found.clone();
+            sorted.sort();
+            let mut expected = vec!["jitter", id, "row-offset=1"];
+            expected.sort();
+            let problem = if sorted != expected || found[0] != "row-offset=1" {
+                Some("not the three, the move first")
+            } else if listed[1..]
+                .iter()
+                .any(|c| c["under"] != serde_json::json!(["row-offset=1"]))
+            {
+                Some("not traced under the move")
+            } else {
+                // Each counted on what the ones before it leave; together nearly all.
+                let differing = count(&json, "differing_pixels");
+                let mut left = differing;
+                for cause in &listed {
+                    if count(cause, "of") != left {
+                        left = u64::MAX;
+                        break;
+                    }
+                    left -= count(cause, "explains");
+                }
+                (left == u64::MAX || left * 20 > differing).then_some("counts")
+            };
+            if let Some(problem) = problem {
+                let causes = &json["causes"];
+                failures.push(format!("{}, {id}: {problem}: {causes}", scene.display()));
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{failures:#?}");
+}
