@@ -243,6 +243,7 @@ fn scene_causes(case: Case, mask: (&[u64], usize)) -> SceneCauses {
         if left > 0
             && let Some(Through::Second([_, jitter])) = jitter_through(case, mask, &found)
             && supported(jitter.explains, jitter.of, 0)
+            && named(&supported_causes, &jitter.under)
         {
             causes.extend(supported_causes);
             causes.push(jitter);
@@ -283,14 +284,41 @@ fn scene_causes(case: Case, mask: (&[u64], usize)) -> SceneCauses {
                 return (after.0, after.1, causes);
             }
         }
-        Some(Through::Second(pair)) => {
-            causes.extend(pair);
+        // Under a move, the pair's two causes as stated, each with its own counts and
+        // pixel, where they are the pair's; then jitter, of what they leave.
+        Some(Through::Second([first, jitter])) => {
+            let mut stated: Vec<Variant> = (supported_causes.iter())
+                .flat_map(|c| c.variants.clone())
+                .collect();
+            let mut pair = first.variants.clone();
+            stated.sort_by_key(|v| v.id());
+            pair.sort_by_key(|v| v.id());
+            let explained: usize = supported_causes.iter().map(|c| c.explains).sum();
+            let of = mask.1.saturating_sub(explained);
+            if jitter.under.is_empty() || stated != pair {
+                causes.extend([first, jitter]);
+            } else if supported(jitter.explains.min(of), of, 0) {
+                causes.extend(supported_causes);
+                causes.push(Cause {
+                    explains: jitter.explains.min(of),
+                    of,
+                    ..jitter
+                });
+            } else {
+                causes.extend(supported_causes);
+            }
             return (found, focus, causes);
         }
         None => {}
     }
     causes.extend(supported_causes);
     (found, focus, causes)
+}
+
+/// Whether each of `moves` is among the variants of `causes`: jitter read under a move is
+/// stated only with it.
+fn named(causes: &[Cause], moves: &[Variant]) -> bool {
+    (moves.iter()).all(|m| causes.iter().any(|c| c.variants.contains(m)))
 }
 
 /// What remains once jittered rays are undone (`repaired`: the student's image with the
@@ -539,31 +567,45 @@ fn jitter_through_image(
 ) -> Option<Through> {
     let (options, student, levels) = (case.options, case.student, case.levels);
     let reference = &case.rendered.image;
-    let moves = |v: &Variant| v.kind.row().site == Site::Camera;
-    if variants.iter().any(moves) {
+    // A move among them (a row off beside a scene mistake): jitter is read against the
+    // image of the others, each student's pixel against the one the move brings there.
+    let (moves, others): (Vec<Variant>, Vec<Variant>) =
+        variants.iter().partition(|v| SHIFTS.contains(&v.kind));
+    if others.is_empty()
+        || variants
+            .iter()
+            .any(|v| v.kind.row().site == Site::Camera && !moves.contains(v))
+    {
         return None;
     }
-    let with = options.with_variants(variants).ok()?;
+    let with = options.with_variants(&others).ok()?;
+    let from: Box<dyn Fn(usize) -> Option<usize>> = match moves.is_empty() {
+        true => Box::new(|i: usize| Some(i)),
+        false => {
+            let moved = options.with_variants(variants).ok()?;
+            Box::new(super::diagnose::shifted_from(&with, &moved, &moves)?)
+        }
+    };
     let image = render::render(case.scene, &with, |_| {});
-    let (off, off_count) = differing(&image, student, levels);
-    let own = |i: usize| Some(i);
+    let off = Moved::of(&image, case, mask, &from);
     let (cause, repaired, off) = jitter_cause(
         case.scene,
         &with,
         &image,
         student,
         levels,
-        (&off, off_count),
-        &own,
+        (&off.left, off.count),
+        &from,
     )?;
     let differs = |i: usize| is_set(mask, i);
     let jittered = |i: usize| repaired.pixels[i] != student.pixels[i];
     let pixels = 0..reference.pixels.len();
-    // Jitter's own pixels: those it gives back the reference's bytes.
+    // Jitter's own pixels: those it gives back the reference's bytes (never under a move,
+    // which is a cause of its own).
     let explains = (pixels.clone())
         .filter(|&i| differs(i) && jittered(i) && repaired.pixels[i] == reference.pixels[i])
         .count();
-    if explains as f64 >= (1.0 - NEARLY_ALL) * count as f64 {
+    if moves.is_empty() && explains as f64 >= (1.0 - NEARLY_ALL) * count as f64 {
         let cause = Cause {
             explains,
             of: count,
@@ -573,7 +615,8 @@ fn jitter_through_image(
     }
     // The candidate's own pixels, those jitter explains of the rest, and the agreeing
     // pixels neither gives.
-    let given = |i: usize| within(image.pixels[i], student.pixels[i], levels);
+    let given =
+        |i: usize| from(i).is_none_or(|j| within(image.pixels[j], student.pixels[i], levels));
     let (fixed, rest, breaks) = pixels.fold((0, 0, 0), |(f, r, b), i| {
         match (differs(i), given(i), jittered(i)) {
             (true, true, _) => (f + 1, r, b),
@@ -591,6 +634,7 @@ fn jitter_through_image(
         explains: rest,
         of: count - fixed,
         breaks: 0,
+        under: moves,
         ..cause
     };
     Some(Through::Second([first, second]))
