@@ -587,14 +587,14 @@ fn jitter_through_image(
         }
     };
     let image = render::render(case.scene, &with, |_| {});
-    let off = Moved::of(&image, case, mask, &from);
+    let left = Moved::of(&image, case, mask, &from);
     let (cause, repaired, off) = jitter_cause(
         case.scene,
         &with,
         &image,
         student,
         levels,
-        (&off.left, off.count),
+        (&left.left, left.count),
         &from,
     )?;
     let differs = |i: usize| is_set(mask, i);
@@ -617,14 +617,24 @@ fn jitter_through_image(
     // pixels neither gives.
     let given =
         |i: usize| from(i).is_none_or(|j| within(image.pixels[j], student.pixels[i], levels));
-    let (fixed, rest, breaks) = pixels.fold((0, 0, 0), |(f, r, b), i| {
-        match (differs(i), given(i), jittered(i)) {
+    // Where the pixels the candidate leaves were too many to trace each (a 4096x4096
+    // image), jitter's share of its sample stands for what it explains of the differing
+    // and the agreeing ones among them.
+    let all = left.count <= JITTER_REPAIR;
+    let (fixed, mut rest, mut breaks) = pixels.fold((0, 0, 0), |(f, r, b), i| {
+        match (differs(i), given(i), all && jittered(i)) {
             (true, true, _) => (f + 1, r, b),
             (true, false, true) => (f, r + 1, b),
             (false, false, false) => (f, r, b + 1),
             _ => (f, r, b),
         }
     });
+    if !all {
+        let share = |n: usize| cause.explains * n / left.count.max(1);
+        let left_differing = count - fixed;
+        rest = share(left_differing);
+        breaks -= share(breaks);
+    }
     let together = fixed + rest;
     if (together as f64) < NEARLY_ALL * count as f64 || breaks * BREAKS_PER_FIX > together {
         return None;
