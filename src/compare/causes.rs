@@ -600,11 +600,14 @@ fn jitter_through_image(
     let differs = |i: usize| is_set(mask, i);
     let jittered = |i: usize| repaired.pixels[i] != student.pixels[i];
     let pixels = 0..reference.pixels.len();
-    // Jitter's own pixels: those it gives back the reference's bytes (never under a move,
-    // which is a cause of its own).
-    let explains = (pixels.clone())
-        .filter(|&i| differs(i) && jittered(i) && repaired.pixels[i] == reference.pixels[i])
-        .count();
+    // Jitter's own pixels: those it gives back the reference's bytes (never counted under
+    // a move, which is a cause of its own).
+    let explains = match moves.is_empty() {
+        true => (pixels.clone())
+            .filter(|&i| differs(i) && jittered(i) && repaired.pixels[i] == reference.pixels[i])
+            .count(),
+        false => 0,
+    };
     if moves.is_empty() && explains as f64 >= (1.0 - NEARLY_ALL) * count as f64 {
         let cause = Cause {
             explains,
