@@ -203,11 +203,15 @@ fn margins_of<const PATHS: bool, B: Rulebook>(
                 setup.rules.bytes.fragile(c, limit)
             };
             let error = rec.colour_error;
-            let bytes = [
-                fragile(colour.x, error.x),
-                fragile(colour.y, error.y),
-                fragile(colour.z, error.z),
-            ];
+            // Without a mirror there is no such error: one test, and no division.
+            let bytes = match error == DVec3::ZERO {
+                true => colour.to_array().map(|c| setup.rules.bytes.fragile(c, limit)),
+                false => [
+                    fragile(colour.x, error.x),
+                    fragile(colour.y, error.y),
+                    fragile(colour.z, error.z),
+                ],
+            };
             let fragility = Fragility::of(rec.least, bytes, precision);
             let first = FirstHit::of(rec.first.flatten());
             let bytes = setup.rules.bytes(colour);

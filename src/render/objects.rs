@@ -23,7 +23,7 @@ use super::variant::{Kind, Rulebook};
 use super::{Camera, Options};
 use crate::scene::{Object, Scene};
 use crate::shapes::kernel::Kernel;
-use crate::shapes::{HitNote, Notes, Ray, clearly_no_root, discriminant_note};
+use crate::shapes::{Ahead, HitNote, Notes, Ray, discriminant_note};
 use crate::threads::Threads;
 
 /// How a query of the aggregate is answered: the caller's choice, an explicit value
@@ -543,19 +543,20 @@ fn test_and_record<K: Kernel, Q: Query, R: Recorder>(
     if !Q::NOTES {
         return object.shape.hit_by::<K>(ray, &mut ());
     }
-    let mut notes = Few::default();
     // A query of margins tells how close the ray came to touching a quadric. Where it
     // clearly misses and the kernel's quick test agrees, the recorder (whose margins
     // reach no further) is not told, and the kernel's notes are not taken.
-    if margins::<Q>()
-        && let Some((a, b, c)) = object.shape.quadratic(ray)
-    {
-        if clearly_no_root(a, b, c, query.reach())
-            && object.shape.hit_by::<K>(ray, &mut ()).is_none()
-        {
-            return None;
+    let mut first = None;
+    if margins::<Q>() {
+        match object.shape.ahead::<K>(ray, query.reach()) {
+            Ahead::Clear => return None,
+            Ahead::Quadratic((a, b, c)) => first = Some(discriminant_note(a, b, c)),
+            Ahead::Flat => {}
         }
-        notes.note(discriminant_note(a, b, c));
+    }
+    let mut notes = Few::default();
+    if let Some(note) = first {
+        notes.note(note);
     }
     let t = object.shape.hit_by::<K>(ray, &mut notes);
     rec.tested(index, t, notes.as_slice());

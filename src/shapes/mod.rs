@@ -260,6 +260,17 @@ pub struct Surface {
     pub plane_xy: glam::DVec2,
 }
 
+/// What a query of margins learns of a test before the kernel's ([`Shape::ahead`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Ahead {
+    /// The ray clearly misses the quadric, and the kernel finds no root: nothing to tell.
+    Clear,
+    /// The test's quadratic (a, b, c), whose discriminant its notes start with.
+    Quadratic((f64, f64, f64)),
+    /// A plane-based shape: no quadratic.
+    Flat,
+}
+
 /// Every shape of spec §3.2-§3.3 that can be hit.
 ///
 /// An enum is as large as its largest variant, so only the shapes a scene may hold by the
@@ -326,24 +337,35 @@ impl Shape {
         }
     }
 
-    /// The quadratic a t² + b t + c along `ray` from its base, as the notes' formula
-    /// computes it, for the sphere, the quadrics 21-24 and `QUADRIC`; `None` for the planes.
-    /// For `compare`'s margins ([`HitNote::Discriminant`]).
+    /// What a query of `compare`'s margins learns of `ray`'s test before the kernel's:
+    /// the quadratic a t² + b t + c along the ray from its base, as the notes' formula
+    /// computes it, for the sphere, the quadrics 21-24 and `QUADRIC`, whose discriminant
+    /// the test's notes start with ([`HitNote::Discriminant`]); or that the ray clearly
+    /// misses, by more than `reach` ([`clearly_no_root`]), and kernel `K` finds no root
+    /// either, so that there is nothing to tell. The sphere's terms are computed once,
+    /// for its discriminant and the kernel's quick test.
     #[inline(always)]
-    pub(crate) fn quadratic(&self, ray: &Ray) -> Option<(f64, f64, f64)> {
-        match self {
-            // The sphere's frame turns nothing: a = D·D, b = 2 D·(B - C), c = |B - C|² - r².
+    pub(crate) fn ahead<K: Kernel>(&self, ray: &Ray, reach: f64) -> Ahead {
+        let clearly = |(a, b, c): (f64, f64, f64)| clearly_no_root(a, b, c, reach);
+        let quadratic = match self {
             Shape::Sphere(s) => {
-                let w = ray.base - s.centre;
-                let (d, r2) = (ray.dir, s.radius_sq);
-                Some((d.dot(d), 2.0 * d.dot(w), w.dot(w) - r2))
+                let terms = s.terms(ray);
+                let quadratic = Sphere::quadratic(terms, s.radius_sq);
+                if clearly(quadratic) && K::sphere_surely_misses(s, terms) {
+                    return Ahead::Clear;
+                }
+                quadratic
             }
-            Shape::Paraboloid(s) => Some(s.equation.quadratic(ray)),
-            Shape::Cylinder(s) => Some(s.equation.quadratic(ray)),
-            Shape::Cone(s) => Some(s.equation.quadratic(ray)),
-            Shape::Hyperboloid(s) => Some(s.equation.quadratic(ray)),
-            Shape::Quadric(s) => Some(s.quadratic(ray)),
-            Shape::Plane(_) | Shape::FinitePlane(_) | Shape::TiledPlane(_) => None,
+            Shape::Paraboloid(s) => s.equation.quadratic(ray),
+            Shape::Cylinder(s) => s.equation.quadratic(ray),
+            Shape::Cone(s) => s.equation.quadratic(ray),
+            Shape::Hyperboloid(s) => s.equation.quadratic(ray),
+            Shape::Quadric(s) => s.quadratic(ray),
+            Shape::Plane(_) | Shape::FinitePlane(_) | Shape::TiledPlane(_) => return Ahead::Flat,
+        };
+        match clearly(quadratic) && self.hit_by::<K>(ray, &mut ()).is_none() {
+            true => Ahead::Clear,
+            false => Ahead::Quadratic(quadratic),
         }
     }
 

@@ -43,6 +43,21 @@ impl Sphere {
         })
     }
 
+    /// The terms of `ray`'s quadratic a t² + b t + c about the centre, with w = B - C:
+    /// (D·D, D·w, |w|²), whence a = D·D, b = 2 D·w and c = |w|² - r² (the notes'
+    /// formula; the sphere's frame turns nothing).
+    #[inline(always)]
+    pub(crate) fn terms(&self, ray: &super::Ray) -> (f64, f64, f64) {
+        let (w, d) = (ray.base - self.centre, ray.dir);
+        (d.dot(d), d.dot(w), w.dot(w))
+    }
+
+    /// The quadratic (a, b, c) of [`Sphere::terms`].
+    #[inline(always)]
+    pub(crate) fn quadratic((dd, dw, ww): (f64, f64, f64), radius_sq: f64) -> (f64, f64, f64) {
+        (dd, 2.0 * dw, ww - radius_sq)
+    }
+
     /// The box `equation().bounds()` gives, C ∓ sqrt(r²), without its general steps: with
     /// αx = αy = αz = 1, β = 0 and no rotation, its widest radius is sqrt(r²) and its
     /// corners are C ∓ sqrt(r²) exactly (the rotation is the identity; the sum with zero

@@ -138,6 +138,11 @@ impl Near {
 }
 
 impl Kernel for Accurate {
+    #[inline(always)]
+    fn sphere_surely_misses(sphere: &Sphere, (_, dw, ww): (f64, f64, f64)) -> bool {
+        misses_by(sphere, dw, ww)
+    }
+
     /// Most rays of a scene miss most spheres: `certainly_misses` says so in a few plain
     /// f64 operations, and only the other rays take the accurate path. (A trace, which
     /// wants the reasons, takes the accurate path for every ray: the same t.)
@@ -350,8 +355,14 @@ const MISS_MARGIN: f64 = 1.0 / (1u64 << 46) as f64;
 #[inline(always)]
 fn certainly_misses(sphere: &Sphere, ray: &Ray) -> bool {
     let w = sphere.centre - ray.base;
-    let p = w.dot(ray.dir);
-    let ww = w.dot(w);
+    misses_by(sphere, w.dot(ray.dir), w.dot(w))
+}
+
+/// [`certainly_misses`] from p = w·D and |w|² (w = C - B). Its sign does not matter: p
+/// enters squared, so D·(B - C), which is -p to the bit (a difference, each product and
+/// the sum all change sign exactly), gives the same answer.
+#[inline(always)]
+fn misses_by(sphere: &Sphere, p: f64, ww: f64) -> bool {
     let r2 = sphere.radius_sq;
     (ww - p * p) - r2 > MISS_MARGIN * (ww + r2)
 }
@@ -848,6 +859,34 @@ mod tests {
             }
         }
         assert!(rejected >= clear && clear > 5_000, "{rejected} {clear}");
+    }
+
+    #[test]
+    fn the_quick_test_on_the_margins_terms_decides_as_the_kernel_s_own() {
+        // compare's margins compute D·(B - C) and |B - C|² for the discriminant and hand
+        // them to the quick test, which computes (C - B)·D and |C - B|² itself. Rays
+        // passing at r (1 + e) from the centre with e across the test's threshold (its
+        // margin, 2^-46 of |w|² + r², is e of about 1e-12 here), where any difference in
+        // the last bits would show: the same answer on every one, and both answers met.
+        let mut numbers = crate::shapes::testing::Numbers(0x9e37_79b9_7f4a_7c15);
+        let mut next = || numbers.next();
+        let mut answers = [0usize; 2];
+        for case in 0..20_000 {
+            let scale = 10f64.powf(8.0 * next() - 4.0);
+            let centre = DVec3::new(next() - 0.5, next() - 0.5, next() - 0.5) * 10.0 * scale;
+            let sphere = Sphere::new(centre, scale * (0.5 + next()), "sphere").unwrap();
+            let dir = crate::shapes::unit(DVec3::new(next() - 0.5, next() - 0.5, next() - 0.5));
+            let dir = dir.unwrap_or(DVec3::X);
+            let side = crate::shapes::unit(dir.cross(DVec3::new(0.3, 0.7, -0.2))).unwrap();
+            let e = 10f64.powf(-14.0 + 4.0 * next());
+            let closest = centre + side * sphere.radius * (1.0 + e);
+            let ray = Ray::new(closest - dir * scale * 20.0 * (next() + 0.01), dir);
+            let own = certainly_misses(&sphere, &ray);
+            let given = Accurate::sphere_surely_misses(&sphere, sphere.terms(&ray));
+            assert_eq!(given, own, "case {case}: {ray:?}");
+            answers[usize::from(own)] += 1;
+        }
+        assert!(answers.iter().all(|&n| n > 1_000), "{answers:?}");
     }
 
     #[test]

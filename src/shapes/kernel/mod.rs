@@ -44,6 +44,15 @@ pub(crate) trait Kernel: Copy + Send + Sync + 'static {
 
     /// A plane (spec §5.1): t = N·(Q - B) / N·D, a miss when N·D = 0, t < 0 or z > 0.
     fn plane<N: Notes>(plane: &Plane, ray: &Ray, notes: &mut N) -> Option<f64>;
+
+    /// Whether this kernel's [`Kernel::sphere`] surely finds no root, told from the
+    /// terms [`Sphere::terms`] gives (D·D, D·w, |w|² with w = B - C) without computing
+    /// them again; `false` where the kernel cannot tell so (its own test then decides).
+    /// For `compare`'s margins, which compute those terms for the discriminant anyway.
+    #[inline(always)]
+    fn sphere_surely_misses(_sphere: &Sphere, _terms: (f64, f64, f64)) -> bool {
+        false
+    }
 }
 
 /// What a zero discriminant (a ray tangent to the surface) means (spec §5.2, §5.6).
