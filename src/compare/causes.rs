@@ -233,7 +233,7 @@ fn scene_causes(case: Case, mask: (&[u64], usize)) -> SceneCauses {
     let reference = &rendered.image;
     let mut causes = Vec::new();
     // 2. The catalogue.
-    let (found, focus) = with_mask(scene, options, rendered, student, levels, mask, &[]);
+    let (found, focus) = with_mask(scene, options, rendered, student, levels, mask, (&[], &[]));
     let supported_causes = stated(&found, mask.1);
     let explained: usize = supported_causes.iter().map(|c| c.explains).sum();
     if explained as f64 >= NEARLY_ALL * mask.1 as f64 {
@@ -357,7 +357,9 @@ fn after_jitter(
     }
     let mask = (&mask[..], count);
     let (scene, options) = (case.scene, case.options);
-    let (found, focus) = with_mask(scene, options, rendered, repaired, levels, mask, &explained);
+    // Rays through the pixel's corner are aimed inside it: jitter stands for them.
+    let ignored = (&explained[..], &[Kind::PixelCentre][..]);
+    let (found, focus) = with_mask(scene, options, rendered, repaired, levels, mask, ignored);
     // A rule of the bytes, which moves a byte by one level, is not read at the tolerance
     // jitter leaves: what it explains there is the jitter's (d01 a row off, jittered and
     // scaled by 256 was told round-bytes on 4,655 pixels). The seeded jitter found again
@@ -959,7 +961,7 @@ fn third_cause(
         repaired,
         levels,
         (&left, left_count),
-        &ignored,
+        (&ignored, &[]),
     );
     // The move's partner, not a move itself.
     let second = found.iter().find_map(|d| match d.variants[..] {

@@ -219,13 +219,14 @@ pub fn diagnose_and_focus(
         student,
         levels,
         (&mask, count),
-        &[],
+        (&[], &[]),
     )
 }
 
 /// [`diagnose_and_focus`] given which pixels differ beyond `levels` (`mask`: pixel i is
 /// bit i % 64 of word i / 64) and how many. The pixels set in `ignored` (empty: none),
-/// which an earlier cause explains, count neither as fixed nor as broken.
+/// which an earlier cause explains, count neither as fixed nor as broken; the variants of
+/// the kinds in `leave_out`, which that cause stands for, are not tried.
 pub(crate) fn with_mask(
     scene: &Scene,
     options: &Options,
@@ -233,7 +234,7 @@ pub(crate) fn with_mask(
     student: &Image,
     levels: u8,
     (mask, differing): (&[u64], usize),
-    ignored: &[u64],
+    (ignored, leave_out): (&[u64], &[Kind]),
 ) -> (Vec<Diagnosis>, Option<Focus>) {
     let reference = &rendered.image;
     let pixels = reference.pixels.len();
@@ -361,7 +362,7 @@ pub(crate) fn with_mask(
     candidates.extend(other_values());
     candidates.extend(stopped(scene));
     candidates.extend(scoped(scene, &paths));
-    candidates.retain(|v| may_change(scene, options, v));
+    candidates.retain(|v| !leave_out.contains(&v.kind) && may_change(scene, options, v));
     // A move with each rule of the bytes, from the start: a row off whose bytes are
     // rounded agrees worse than the image as it is under either alone, so neither would
     // be the best to pair. The move is the one under which the reference's own pixels,
