@@ -261,6 +261,21 @@ impl Reach {
                     let from = clipped_from(variant.value.unwrap_or(f64::INFINITY));
                     reach.clipped = reach.clipped.min(from);
                 }
+                // The records from a line on, gone: where a path met any of them.
+                Reads::Records => {
+                    let line = variant.line?;
+                    let gone = |at: usize| at >= line;
+                    for (object, _) in
+                        (scene.objects.iter().enumerate()).filter(|(_, o)| gone(o.line))
+                    {
+                        reach.records |= HITS.bit(object) | BLOCKERS.bit(object);
+                    }
+                    for (light, _) in
+                        (scene.lights.iter().enumerate()).filter(|(_, l)| gone(l.line))
+                    {
+                        reach.records |= LIGHTS.bit(light);
+                    }
+                }
                 reads => {
                     let line = variant.line?;
                     let object = scene.objects.iter().position(|o| o.line == line);

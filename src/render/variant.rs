@@ -194,6 +194,10 @@ pub enum Reads {
     /// How far the hits and the shadow rays' blockers lie: the paths that met something
     /// at the variant's value or beyond.
     Distances,
+    /// Every record from its line on: the hits on those objects, them as blockers, and
+    /// those lights' terms (the records before keep their places among the objects and
+    /// the lights).
+    Records,
     /// The geometry, or the image as a whole: any pixel may change.
     Anything,
 }
@@ -368,7 +372,7 @@ variants! {
     StoppedAt: "stopped-at", Scene, Record, Parameter::None, "stopped",
         "§2.3 records to the end of the file",
         "the records from LINE on are not loaded (a reader that stopped there without an error)",
-        advice "and every record after it are not loaded",
+        reads Records, advice "and every record after it are not loaded",
             "the loop that reads the records: it must go on to the end of the file (spec §2.3)";
     /// The notes' root formula in f64 (`--kernel textbook`).
     Textbook: "textbook", Option, Image, Parameter::None, "kernel",

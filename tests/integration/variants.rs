@@ -280,9 +280,11 @@ fn a_hidden_plane_hides_nothing_behind_it() {
 /// (src/render/reach.rs): a variant of one record changes only the pixels whose paths in
 /// the reference name that record, a byte rule only by the steps the paths hold, and
 /// one-bounce only the pixels whose paths took a second mirror bounce, far-clip=D only
-/// those whose paths met something at D or beyond. For every localisable edit of the
+/// those whose paths met something at D or beyond, a reader stopped at a record only
+/// those whose paths met that record or a later one. For every localisable edit of the
 /// first objects and of every light of each scene (and with round-bytes or scale-256
-/// besides), and for one-bounce and far clips of 2 to 20 alone and beside the first edit,
+/// besides), a reader stopped at each of those records, and for one-bounce and far clips
+/// of 2 to 20 alone and beside the first edit,
 /// the image put together from the reference (the
 /// pixels not touched) and from [`compare::render_pixels`] (the touched ones) is the
 /// image rendered whole under the variants.
@@ -311,6 +313,9 @@ fn a_variant_of_one_record_changes_only_the_pixels_whose_paths_name_it() {
                     Variant::parse(&format!("{edit}@{}", object.line)).unwrap(),
                 ]);
             }
+            sets.push(vec![
+                Variant::parse(&format!("stopped-at@{}", object.line)).unwrap(),
+            ]);
             if matches!(object.shape, Shape::TiledPlane(_)) {
                 sets.push(vec![
                     Variant::parse(&format!("tile-parity@{}", object.line)).unwrap(),
@@ -318,6 +323,9 @@ fn a_variant_of_one_record_changes_only_the_pixels_whose_paths_name_it() {
             }
         }
         for light in &scene.lights {
+            sets.push(vec![
+                Variant::parse(&format!("stopped-at@{}", light.line)).unwrap(),
+            ]);
             for edit in light_edits {
                 sets.push(vec![
                     Variant::parse(&format!("{edit}@{}", light.line)).unwrap(),
@@ -422,6 +430,34 @@ fn a_far_clip_that_frees_a_shadow_ray_is_within_its_reach() {
     assert!(
         near_changed > 0 && touched < plain.pixels.len(),
         "{near_changed} {touched}"
+    );
+}
+
+/// A reader stopped at a blocker that no camera ray sees, after the light: the floor
+/// under a sphere above the view, lit from above it (the light first in the file).
+/// stopped-at@15 drops the sphere alone and frees its shadow on pixels whose paths hit
+/// only the floor and met the light: the blocker, kept in the path, says so.
+#[test]
+fn a_reader_stopped_at_a_blocker_out_of_view_is_within_its_reach() {
+    let text = "8 6\n0 0 3\n\n10\n100 100 100\n0 50 2\n\n\
+                14\n0.1 0.1 0.1\n5 5 5\n0 0 0\n0 1 0\n0 -1 0\n\n\
+                13\n0.2 0.2 0.2\n1 1 1\n0 0 0\n0 20 2\n6\n";
+    let scene = legacy_rt::load(text).unwrap();
+    assert_eq!(scene.objects[1].line, 15);
+    let options = Options::new(40, 30);
+    let stopped = Variant::parse("stopped-at@15").unwrap();
+    let (reference, _, paths) = render_with_paths(&scene, &options, legacy_rt::compare::F32);
+    let rendered = (&reference, &paths[..]);
+    let touched = assembled_is_whole(&scene, options, rendered, &[stopped], "a blocker");
+    // Not vacuous: the shadow goes, and some pixels are left to the reference.
+    let edited = options.with_variant(stopped).unwrap();
+    let freed = render::render(&scene, &edited, |_| {});
+    let changed = (0..freed.pixels.len())
+        .filter(|&i| freed.pixels[i] != reference.pixels[i])
+        .count();
+    assert!(
+        changed > 0 && touched < freed.pixels.len(),
+        "{changed} {touched}"
     );
 }
 
