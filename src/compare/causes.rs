@@ -357,9 +357,10 @@ fn after_jitter(
     }
     let mask = (&mask[..], count);
     let (scene, options) = (case.scene, case.options);
-    // Rays through the pixel's corner are aimed inside it: jitter stands for them.
-    let ignored = (&explained[..], &[Kind::PixelCentre][..]);
-    let (found, focus) = with_mask(scene, options, rendered, repaired, levels, mask, ignored);
+    // Jitter's pixels count neither way, and it stands for rays through the pixel's
+    // corner, which are aimed inside it.
+    let jitters = (&explained[..], &[Kind::PixelCentre][..]);
+    let (found, focus) = with_mask(scene, options, rendered, repaired, levels, mask, jitters);
     // A rule of the bytes, which moves a byte by one level, is not read at the tolerance
     // jitter leaves: what it explains there is the jitter's (d01 a row off, jittered and
     // scaled by 256 was told round-bytes on 4,655 pixels). The seeded jitter found again
