@@ -603,21 +603,20 @@ fn jitter_through_image(
     let differs = |i: usize| is_set(mask, i);
     let jittered = |i: usize| repaired.pixels[i] != student.pixels[i];
     let pixels = 0..reference.pixels.len();
-    // Jitter's own pixels: those it gives back the reference's bytes (never counted under
-    // a move, which is a cause of its own).
-    let explains = match moves.is_empty() {
-        true => (pixels.clone())
+    // Jitter's own pixels: those it gives back the reference's bytes. Under a move, which
+    // is a cause of its own, jitter is never the first.
+    if moves.is_empty() {
+        let explains = (pixels.clone())
             .filter(|&i| differs(i) && jittered(i) && repaired.pixels[i] == reference.pixels[i])
-            .count(),
-        false => 0,
-    };
-    if moves.is_empty() && explains as f64 >= (1.0 - NEARLY_ALL) * count as f64 {
-        let cause = Cause {
-            explains,
-            of: count,
-            ..cause
-        };
-        return Some(Through::First(cause, repaired, off));
+            .count();
+        if explains as f64 >= (1.0 - NEARLY_ALL) * count as f64 {
+            let cause = Cause {
+                explains,
+                of: count,
+                ..cause
+            };
+            return Some(Through::First(cause, repaired, off));
+        }
     }
     // The candidate's own pixels, those jitter explains of the rest, and the agreeing
     // pixels neither gives.

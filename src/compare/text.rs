@@ -333,9 +333,10 @@ pub fn diagnosis(report: &Report) -> Vec<String> {
             // Jitter read against the image the first moves, with a rule of the bytes
             // read so too where there is one: found together, from the images, and
             // counted together.
+            // (Jitter has no variant; a rule of the bytes has one, of the bytes' site.)
             let read = |c: &&Cause| {
-                let bytes = c.variants.iter().all(|v| v.kind.row().site == Site::Bytes);
-                !c.under.is_empty() && c.under == first.variants && bytes
+                let from_images = c.variants.iter().all(|v| v.kind.row().site == Site::Bytes);
+                !c.under.is_empty() && c.under == first.variants && from_images
             };
             let moved: Vec<&Cause> = causes[1..].iter().take_while(read).take(2).collect();
             let moved_jitter = moved.iter().any(|c| c.variants.is_empty());
