@@ -77,19 +77,21 @@ bytes) and an empty scene (the per-pixel path alone), rendered by the command li
 thread. *Per pixel* is the whole run's instructions over the 76,800 pixels of 320x240
 (start-up, parsing and the PPM encoding included); *marginal* is the difference between
 the runs at 640x480 and at 320x240 over the pixels added: one more pixel's cost. Where
-no light is lit and nothing reflects (this plane; any scene in the ambient stage) the
-render's loop leaves the lights' and the mirror's steps of spec §4.2 out
-(`Tracer::ambient_only`): before it, the plane took 33,074,811 instructions at 320x240,
-431 a pixel, 420 marginal.
+no light is lit and nothing reflects (this plane; any scene in the ambient stage) a span
+of the render takes the first step of spec §4.2's loop alone, its rays' hits found
+together (`Tracer::ambient_span`, docs/architecture.md): before it, the plane took
+24,700,362 instructions at 320x240, 322 a pixel, 311 marginal, by the loop without its
+lights' and mirror's steps; before that, by the whole loop, 33,074,811, 431 a pixel, 420
+marginal.
 
 {table}
 
 The twins of `bench/tachyon_twins.py` (Tachyon's scenes of issue 47, written into
 `target/bench`), counted the same way at 320x240, and where a pixel's instructions go:
-the camera ray and its first hit with the ambient term (`--stage ambient`, by the loop
-without the lights' and the mirror's steps), the diffuse and specular terms without
-shadow rays and the loop's steps for them (`--variant no-shadows` less that), and the
-shadow rays (the whole render less `--variant no-shadows`).
+the camera ray and its first hit with the ambient term (`--stage ambient`, by the
+ambient step above), the diffuse and specular terms without shadow rays and the loop's
+steps (`--variant no-shadows` less that), and the shadow rays (the whole render less
+`--variant no-shadows`).
 
 {twin_table}
 """

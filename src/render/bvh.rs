@@ -58,7 +58,7 @@ const MAX_DEPTH: usize = SAH_DEPTH + 32;
 
 /// An axis-aligned box.
 #[derive(Debug, Clone, Copy)]
-struct Aabb {
+pub(crate) struct Aabb {
     min: DVec3,
     max: DVec3,
 }
@@ -178,7 +178,19 @@ impl Boxes {
     /// object's box by `t`, or the object has no box.
     #[inline]
     pub(crate) fn admits(&self, index: usize, ray: &Ray, t: f64) -> bool {
-        self.boxes[index].is_none_or(|b| b.entered(ray.base, ray.dir.recip(), t))
+        Boxes::admitted(self.of(index), ray, t)
+    }
+
+    /// Object `index`'s box, for [`Boxes::admitted`] of many rays.
+    #[inline(always)]
+    pub(crate) fn of(&self, index: usize) -> Option<&Aabb> {
+        self.boxes[index].as_ref()
+    }
+
+    /// [`Boxes::admits`] of an object whose box is `of`.
+    #[inline(always)]
+    pub(crate) fn admitted(of: Option<&Aabb>, ray: &Ray, t: f64) -> bool {
+        of.is_none_or(|b| b.entered(ray.base, ray.dir.recip(), t))
     }
 }
 

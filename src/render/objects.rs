@@ -25,6 +25,7 @@ use crate::scene::{Object, Scene};
 use crate::shapes::kernel::Kernel;
 use crate::shapes::{Ahead, HitNote, Notes, Ray, discriminant_note};
 use crate::threads::Threads;
+use glam::DVec3;
 
 /// How a query of the aggregate is answered: the caller's choice, an explicit value
 /// ([`Plain`], [`EveryObject`], [`Near`], [`Noted`] or [`Forced`]), never the recorder's. The answer is the same
@@ -411,6 +412,67 @@ impl<'a, B: Rulebook> Objects<'a, B> {
             });
         }
         best.map(|(object, t)| Hit { object, t })
+    }
+
+    /// [`Objects::closest`] of the camera rays from `eye` along `dirs` (a tile's span of a
+    /// row; bit `lane` of `walking` clear: that lane has no ray), all in `tile`, for the
+    /// plain render, each lane's hit told to `hit(lane, hit)`: the tile's list walked
+    /// once for the span, each object's test made ready for the eye once
+    /// ([`Shape::for_base`](crate::shapes::Shape::for_base)), and each ray leaving the
+    /// walk where its own would end. Each ray gets the tests, the checks and the tie
+    /// rule of its own walk, in the same order, so the same hit.
+    #[inline(always)]
+    pub(crate) fn closest_from_eye<K: Kernel, const N: usize>(
+        &self,
+        eye: DVec3,
+        dirs: &[DVec3; N],
+        mut walking: u32,
+        tile: Tile,
+        mut hit: impl FnMut(usize, Option<Hit>),
+    ) {
+        const { assert!(N <= 32) };
+        // Each ray's best hit so far, none as (∞, u32::MAX): `beats` takes any hit with
+        // t ≤ ∞ over it, as over none, and a NaN or negative t never counts.
+        let mut best_t = [f64::INFINITY; N];
+        let mut best = [u32::MAX; N];
+        let far = self.rules.far();
+        for &index in tile.objects {
+            // Near to far: past a ray's best hit so far, nothing can win or tie.
+            let nearest = tile.nearest[index as usize];
+            for (lane, t) in best_t.iter().enumerate() {
+                if nearest > *t {
+                    walking &= !(1 << lane);
+                }
+            }
+            if walking == 0 {
+                break;
+            }
+            if self.out_of_closest(index as usize, None) {
+                continue;
+            }
+            let test = self.scene.objects[index as usize].shape.for_base::<K>(eye);
+            let boxed = self.boxes.of(index as usize);
+            for lane in 0..N {
+                let ray = Ray {
+                    base: eye,
+                    dir: dirs[lane],
+                };
+                if walking & (1 << lane) != 0
+                    && let Some(t) = test.hit::<K>(&ray)
+                    && beats(Some((best[lane] as usize, best_t[lane])), index as usize, t)
+                    && t > 0.0
+                    && far.is_none_or(|far| t < far)
+                    && Boxes::admitted(boxed, &ray, t)
+                {
+                    (best[lane], best_t[lane]) = (index, t);
+                }
+            }
+        }
+        for lane in 0..N {
+            let object = best[lane] as usize;
+            let t = best_t[lane];
+            hit(lane, (best[lane] != u32::MAX).then_some(Hit { object, t }));
+        }
     }
 
     /// Whether a hit on object `index` at `t` counts for [`Objects::closest`]: t above

@@ -14,7 +14,7 @@ use super::stage::{Show, Stage};
 use super::tiles::{TILE, Tile};
 use super::variant::{Divisor, Kind, LightRules, ObjectRules, Rulebook};
 use super::{Camera, Options, object_colour};
-use crate::scene::{Light, Material, Object, Scene};
+use crate::scene::{Light, Material, Object, Pattern, Scene};
 use crate::shapes::kernel::Kernel;
 use crate::shapes::{Ray, Surface, unit};
 use crate::threads::Threads;
@@ -95,9 +95,10 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
 
     /// Whether every colour is the ambient of its first hit over its distance: no light
     /// that the stage lights (step 5 of spec §4.2 adds nothing) and no object that the
-    /// stage reflects (step 7 ends every path), under no `--show`. A span's rays are then
-    /// traced with those two steps left out of the loop ([`Tracer::span`]'s `AMBIENT`),
-    /// which gives the same colours in fewer instructions (docs/architecture.md).
+    /// stage reflects (step 7 ends every path), under no `--show`. A span's rays then
+    /// take the loop's first step alone ([`Tracer::span`]'s `AMBIENT`,
+    /// [`Tracer::ambient_span`]), which gives the same colours in fewer instructions
+    /// (docs/architecture.md).
     pub(crate) fn ambient_only(&self) -> bool {
         let lit = self.stage.lights() && !self.scene.lights.is_empty();
         let mirrors = || self.stage.reflects() && self.scene.objects.iter().any(Object::reflects);
@@ -117,7 +118,7 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
         rec: &mut impl Recorder,
     ) -> DVec3 {
         match self.camera.ray(x, y) {
-            Some(ray) => self.along::<K, false>(ray, self.objects.tile(x, y), query, rec),
+            Some(ray) => self.along::<K>(ray, self.objects.tile(x, y), query, rec),
             None => DVec3::ZERO,
         }
     }
@@ -131,7 +132,7 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
         query: impl Query,
         rec: &mut impl Recorder,
     ) -> DVec3 {
-        self.along::<K, false>(ray, None, query, rec)
+        self.along::<K>(ray, None, query, rec)
     }
 
     /// Whether pixel (x, y)'s tile sees no object: every pixel of it is the background,
@@ -145,10 +146,10 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
     /// all in one tile), each [`Tracer::pixel`]'s without a recorder, given to
     /// `out(i, colour)`: the tile's list looked up once (black without a ray where the
     /// tile sees no object), and the rays traced `TOGETHER`
-    /// ([`Tracer::trace`]'s lanes) or one by one, the same colours either way; one by
-    /// one and `AMBIENT` where [`Tracer::ambient_only`] says so. The caller chooses these
-    /// once, from [`Tracer::together`] and [`Tracer::ambient_only`], so that each loop
-    /// over the spans is compiled for one.
+    /// ([`Tracer::trace`]'s lanes) or one by one, the same colours either way; or, where
+    /// [`Tracer::ambient_only`] says so, `AMBIENT` ([`Tracer::ambient_span`]). The caller
+    /// chooses these once, from [`Tracer::together`] and [`Tracer::ambient_only`], so
+    /// that each loop over the spans is compiled for one.
     #[inline(always)]
     pub(crate) fn span<K: Kernel, const TOGETHER: bool, const AMBIENT: bool>(
         &self,
@@ -185,11 +186,14 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
         count: usize,
         mut out: impl FnMut(usize, DVec3),
     ) {
+        if AMBIENT && self.show.is_none() {
+            return self.ambient_span::<K>(rays, tile, count, out);
+        }
         // Under --show (never together) each ray's diagnostic colour.
         if !TOGETHER || self.show.is_some() {
             for i in 0..count {
                 let colour = match rays(i) {
-                    Some(ray) => self.along::<K, AMBIENT>(ray, tile, Plain, &mut ()),
+                    Some(ray) => self.along::<K>(ray, tile, Plain, &mut ()),
                     None => DVec3::ZERO,
                 };
                 out(i, colour);
@@ -198,16 +202,85 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
         }
         let mut colours = [DVec3::ZERO; TILE];
         let rays = |i: usize| (i < count).then(|| rays(i)).flatten();
-        self.trace::<K, _, (), TILE, false>(rays, tile, Plain, &mut [(); TILE], &mut colours);
+        self.trace::<K, _, (), TILE>(rays, tile, Plain, &mut [(); TILE], &mut colours);
         for (i, colour) in colours.into_iter().enumerate().take(count) {
             out(i, colour);
         }
     }
 
-    /// The colour along a camera ray, with its tile's list where it has one; `AMBIENT`
-    /// where [`Tracer::ambient_only`] says so.
+    /// [`Tracer::rays`] where [`Tracer::ambient_only`] says so: each colour is step 6's
+    /// ambient over the length of the camera ray to its first hit. Where the rays test
+    /// their tile's list (and MAX_DIST is not below 0, which cuts every path), a span's
+    /// hits are found together ([`Objects::closest_from_eye`]) and the surface is
+    /// computed only where the object's material varies over it; every other span takes
+    /// the loop ([`Tracer::along`]). The same values as the loop's steps 2, 3, 4 and 6
+    /// ([`Tracer::divided`] is its step 6), so the same colours.
     #[inline(always)]
-    fn along<K: Kernel, const AMBIENT: bool>(
+    fn ambient_span<K: Kernel>(
+        &self,
+        rays: impl Fn(usize) -> Option<Ray>,
+        tile: Option<Tile>,
+        count: usize,
+        mut out: impl FnMut(usize, DVec3),
+    ) {
+        // 1. A camera ray's path is 0 long: cut only under a MAX_DIST below 0.
+        let cut = 0.0 > self.max_dist;
+        let Some(tile) = tile.filter(|_| !cut) else {
+            for i in 0..count {
+                let colour = rays(i).map(|ray| self.along::<K>(ray, tile, Plain, &mut ()));
+                out(i, colour.unwrap_or(DVec3::ZERO));
+            }
+            return;
+        };
+        // 2. The closest hits, along rays that all leave the eye.
+        let eye = self.camera.viewpoint;
+        let (mut dirs, mut walking) = ([DVec3::ZERO; TILE], 0);
+        for (i, dir) in dirs.iter_mut().enumerate().take(count) {
+            if let Some(ray) = rays(i) {
+                debug_assert_eq!(ray.base, eye);
+                (*dir, walking) = (ray.dir, walking | 1 << i);
+            }
+        }
+        let seen = |i: usize, hit: Option<Hit>| {
+            if i >= count {
+                return;
+            }
+            let Some(Hit { object, t }) = hit else {
+                return out(i, DVec3::ZERO);
+            };
+            let ray = Ray {
+                base: eye,
+                dir: dirs[i],
+            };
+            // 3. The path grows by the segment.
+            let path = Path {
+                ray,
+                leaves: None,
+                weight: DVec3::ONE,
+                total_dist: 0.0 + t,
+            };
+            // 4. The ambient, read from the surface only where the material varies.
+            let look = &self.scene.objects[object].look;
+            let ambient = match look.pattern {
+                Pattern::Plain => look.material.ambient,
+                _ => {
+                    let at = (object, self.rules.object(object), false);
+                    self.surface(at, &ray, t, path.total_dist, &mut ())
+                        .1
+                        .ambient
+                }
+            };
+            // 6. I / total_dist.
+            let mut colour = DVec3::ZERO;
+            self.divided(&path, ambient, t, &mut colour, &mut ());
+            out(i, colour);
+        };
+        (self.objects).closest_from_eye::<K, TILE>(eye, &dirs, walking, tile, seen);
+    }
+
+    /// The colour along a camera ray, with its tile's list where it has one.
+    #[inline(always)]
+    fn along<K: Kernel>(
         &self,
         ray: Ray,
         tile: Option<Tile>,
@@ -218,7 +291,7 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
             None => {
                 let mut colour = [DVec3::ZERO];
                 let recs = std::array::from_mut(rec);
-                self.trace::<K, _, _, 1, AMBIENT>(|_| Some(ray), tile, query, recs, &mut colour);
+                self.trace::<K, _, _, 1>(|_| Some(ray), tile, query, recs, &mut colour);
                 colour[0]
             }
             Some(show) => self.show::<K>(ray, show, From::Eye(tile), query, rec),
@@ -234,10 +307,9 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
     /// overlap. Each lane gets the same operations in the same order as on its own, so
     /// the same bytes and the same events. Where the paths are kept in arrays of N,
     /// one lane compiles to about the instructions of a loop over one ray
-    /// (docs/architecture.md gives the figures). `AMBIENT` leaves steps 5 and 7 out,
-    /// where they can change nothing ([`Tracer::ambient_only`]).
+    /// (docs/architecture.md gives the figures).
     #[inline(always)]
-    pub(crate) fn trace<K: Kernel, Q: Query, R: Recorder, const N: usize, const AMBIENT: bool>(
+    pub(crate) fn trace<K: Kernel, Q: Query, R: Recorder, const N: usize>(
         &self,
         rays: impl Fn(usize) -> Option<Ray>,
         tile: Option<Tile>,
@@ -306,7 +378,7 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
                 break;
             }
             // 5. Every light's diffuse term.
-            if !AMBIENT && self.stage.lights() {
+            if self.stage.lights() {
                 for (light, lamp) in self.scene.lights.iter().enumerate() {
                     self.diffuse::<K, Q, R, N>(light, lamp, &mut hits, query, recs);
                 }
@@ -317,17 +389,9 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
                     continue;
                 };
                 // 6. I / total_dist.
-                let seen = h.intensity / self.divisor(p.total_dist, h.t);
-                *colour += p.weight * seen;
-                rec.record(|| Event::Divided {
-                    intensity: h.intensity,
-                    total_dist: p.total_dist,
-                    seen,
-                    weight: p.weight,
-                    colour: *colour,
-                });
+                self.divided(p, h.intensity, h.t, colour, rec);
                 // 7. The mirror: S ⊙ ray_trace(hit, R, total_dist, this object).
-                let stops = AMBIENT || depth == bounces || query.no_bounce(h.object);
+                let stops = depth == bounces || query.no_bounce(h.object);
                 let mirror = match stops || !self.reflects(h.rules, &h.material) {
                     true => None,
                     false => mirror(&p.ray, &h.surface),
@@ -345,6 +409,29 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
                 break;
             }
         }
+    }
+
+    /// Step 6 of [`Tracer::trace`]: the `intensity` at the hit at `t` that ends the path
+    /// `p` so far, over the path's length (or what a variant divides by), weighted by
+    /// the mirrors before it and added to the lane's `colour`.
+    #[inline(always)]
+    fn divided(
+        &self,
+        p: &Path,
+        intensity: DVec3,
+        t: f64,
+        colour: &mut DVec3,
+        rec: &mut impl Recorder,
+    ) {
+        let seen = intensity / self.divisor(p.total_dist, t);
+        *colour += p.weight * seen;
+        rec.record(|| Event::Divided {
+            intensity,
+            total_dist: p.total_dist,
+            seen,
+            weight: p.weight,
+            colour: *colour,
+        });
     }
 
     /// One light's diffuse term (spec §4.3) at each hit of [`Tracer::trace`]'s step,

@@ -36,7 +36,7 @@ pub use sphere::Sphere;
 
 use crate::error::MeaningError;
 use glam::DVec3;
-use kernel::{Kernel, KernelChoice, with_kernel};
+use kernel::{Kernel, KernelChoice, PlaneFrom, with_kernel};
 
 /// A ray: a base point and a unit direction.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -260,6 +260,26 @@ pub struct Surface {
     pub plane_xy: glam::DVec2,
 }
 
+/// A shape's test made ready for many rays from one base ([`Shape::for_base`]), a
+/// span's camera rays: a plane's (or a tiled plane's) numerator computed once
+/// ([`Kernel::plane_from`]); every other shape as it is.
+pub(crate) enum ForBase<'s> {
+    Plane(&'s Plane, PlaneFrom),
+    Other(&'s Shape),
+}
+
+impl ForBase<'_> {
+    /// [`Shape::hit_by`] without notes of a `ray` from the base this was made ready for:
+    /// the same t.
+    #[inline(always)]
+    pub(crate) fn hit<K: Kernel>(&self, ray: &Ray) -> Option<f64> {
+        match self {
+            ForBase::Plane(plane, from) => K::plane_toward(plane, from, ray),
+            ForBase::Other(shape) => shape.hit_by::<K>(ray, &mut ()),
+        }
+    }
+}
+
 /// What a query of margins learns of a test before the kernel's ([`Shape::ahead`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) enum Ahead {
@@ -334,6 +354,17 @@ impl Shape {
             Shape::Cone(s) => K::axis_quadric(&s.equation, ray, notes),
             Shape::Hyperboloid(s) => K::axis_quadric(&s.equation, ray, notes),
             Shape::Quadric(s) => K::quadric(s, ray, notes),
+        }
+    }
+
+    /// This shape's test made ready for many rays from `base` ([`ForBase`]).
+    #[inline(always)]
+    pub(crate) fn for_base<K: Kernel>(&self, base: DVec3) -> ForBase<'_> {
+        match self {
+            Shape::Plane(p) | Shape::TiledPlane(PlaneFrame { plane: p, .. }) => {
+                ForBase::Plane(p, K::plane_from(p, base))
+            }
+            shape => ForBase::Other(shape),
         }
     }
 

@@ -31,7 +31,7 @@
 //! accept a hit within [`slack`] of the bound, so a point the scene puts exactly on a
 //! bound does not flip from pixel to pixel on the rounding of t and of the ray.
 
-use super::{Kernel, Tangent};
+use super::{Kernel, PlaneFrom, Tangent};
 use super::{solve_quadratic, solve_quadratic_with_slope};
 use crate::shapes::kernel::dd::{
     Dd, fused, scaled, scaled_product, square, sum_as_dd, sum_as_f64, two_prod, two_sum,
@@ -180,22 +180,49 @@ impl Kernel for Accurate {
     /// screen, which §5.1 draws.
     #[inline]
     fn plane<N: Notes>(plane: &Plane, ray: &Ray, notes: &mut N) -> Option<f64> {
-        let n = plane.normal;
-        let (over, under) = (n * (plane.point - ray.base), n * ray.dir);
-        let (numerator, denominator) = (over.element_sum(), under.element_sum());
-        // Each dot product is good to a few ulps unless its terms cancel.
-        let cancels = |dot: f64, terms: DVec3| 2.0 * dot.abs() < terms.abs().element_sum();
-        let t = if cancels(numerator, over) || cancels(denominator, under) {
-            plane_dd(plane, ray)
-        } else {
-            (denominator != 0.0).then(|| numerator / denominator)
-        };
-        let Some(t) = t else {
-            notes.note(HitNote::Parallel);
-            return None;
-        };
-        plane.verdict(ray, t, || slack(ray.base.z.abs() + t.abs()), notes)
+        plane_split(plane, &Accurate::plane_from(plane, ray.base), ray, notes)
     }
+
+    #[inline(always)]
+    fn plane_from(plane: &Plane, base: DVec3) -> PlaneFrom {
+        let over = plane.normal * (plane.point - base);
+        let numerator = over.element_sum();
+        PlaneFrom {
+            numerator,
+            cancels: cancels(numerator, over),
+        }
+    }
+
+    #[inline(always)]
+    fn plane_toward(plane: &Plane, from: &PlaneFrom, ray: &Ray) -> Option<f64> {
+        plane_split(plane, from, ray, &mut ())
+    }
+}
+
+/// Whether a dot product `dot` of these `terms` may have lost digits: it is good to a
+/// few ulps unless its terms cancel.
+#[inline(always)]
+fn cancels(dot: f64, terms: DVec3) -> bool {
+    2.0 * dot.abs() < terms.abs().element_sum()
+}
+
+/// [`Accurate::plane`] for a ray from the base `from` was prepared for: the denominator
+/// N·D, then t, both dot products recomputed where either's terms cancel
+/// ([`plane_dd`]), then spec §5.1's rule.
+#[inline(always)]
+fn plane_split(plane: &Plane, from: &PlaneFrom, ray: &Ray, notes: &mut impl Notes) -> Option<f64> {
+    let under = plane.normal * ray.dir;
+    let denominator = under.element_sum();
+    let t = if from.cancels || cancels(denominator, under) {
+        plane_dd(plane, ray)
+    } else {
+        (denominator != 0.0).then(|| from.numerator / denominator)
+    };
+    let Some(t) = t else {
+        notes.note(HitNote::Parallel);
+        return None;
+    };
+    plane.verdict(ray, t, || slack(ray.base.z.abs() + t.abs()), notes)
 }
 
 /// Note 003's algorithm for the sphere and the quadrics 21-24 in this kernel's steps:

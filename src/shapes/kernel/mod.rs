@@ -25,6 +25,7 @@ pub(crate) use quadratic::{solve_quadratic, solve_quadratic_with_slope};
 pub(crate) use textbook::{Stable, Textbook, TextbookF32};
 
 use super::{AxisQuadric, Notes, Plane, Quadric, Ray, Sphere};
+use glam::DVec3;
 
 /// One way of computing hit distances: the whole hit of each family of shapes, with the
 /// decisions of spec §5 (shared through [`crate::shapes::RootRule`] and
@@ -45,6 +46,21 @@ pub(crate) trait Kernel: Copy + Send + Sync + 'static {
     /// A plane (spec §5.1): t = N·(Q - B) / N·D, a miss when N·D = 0, t < 0 or z > 0.
     fn plane<N: Notes>(plane: &Plane, ray: &Ray, notes: &mut N) -> Option<f64>;
 
+    /// What [`Kernel::plane_toward`] needs of `plane` for rays from `base`: the part of
+    /// the test that the rays' base alone decides, computed once for many rays (a
+    /// span's camera rays, which leave the eye). Nothing, unless the kernel says.
+    #[inline(always)]
+    fn plane_from(_plane: &Plane, _base: DVec3) -> PlaneFrom {
+        PlaneFrom::default()
+    }
+
+    /// [`Kernel::plane`] without notes, for a `ray` from the base `from` was prepared
+    /// for ([`Kernel::plane_from`]): the same t.
+    #[inline(always)]
+    fn plane_toward(plane: &Plane, _from: &PlaneFrom, ray: &Ray) -> Option<f64> {
+        Self::plane(plane, ray, &mut ())
+    }
+
     /// Whether this kernel's [`Kernel::sphere`] surely finds no root, told from the
     /// terms [`Sphere::terms`] gives (D·D, D·w, |w|² with w = B - C) without computing
     /// them again; `false` where the kernel cannot tell so (its own test then decides).
@@ -53,6 +69,14 @@ pub(crate) trait Kernel: Copy + Send + Sync + 'static {
     fn sphere_surely_misses(_sphere: &Sphere, _terms: (f64, f64, f64)) -> bool {
         false
     }
+}
+
+/// A plane's numerator N·(Q - B) for rays from one base B, and whether its terms cancel
+/// ([`Kernel::plane_from`]); the kernels that do not split their test leave it unread.
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct PlaneFrom {
+    pub(crate) numerator: f64,
+    pub(crate) cancels: bool,
 }
 
 /// What a zero discriminant (a ray tangent to the surface) means (spec §5.2, §5.6).
