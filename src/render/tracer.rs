@@ -209,12 +209,9 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
     }
 
     /// [`Tracer::rays`] where [`Tracer::ambient_only`] says so: each colour is step 6's
-    /// ambient over the length of the camera ray to its first hit. Where the rays test
-    /// their tile's list (and MAX_DIST is not below 0, which cuts every path), a span's
-    /// hits are found together ([`Objects::closest_from_eye`]) and the surface is
-    /// computed only where the object's material varies over it; every other span takes
-    /// the loop ([`Tracer::along`]). The same values as the loop's steps 2, 3, 4 and 6
-    /// ([`Tracer::divided`] is its step 6), so the same colours.
+    /// ambient over the length of the camera ray to its first hit ([`Tracer::ambient`]).
+    /// Where the rays test their tile's list, a span's hits are found together
+    /// ([`Objects::closest_from_eye`]); elsewhere (under jitter) each ray's on its own.
     #[inline(always)]
     fn ambient_span<K: Kernel>(
         &self,
@@ -224,15 +221,22 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
         mut out: impl FnMut(usize, DVec3),
     ) {
         // 1. A camera ray's path is 0 long: cut only under a MAX_DIST below 0.
-        let cut = 0.0 > self.max_dist;
-        let Some(tile) = tile.filter(|_| !cut) else {
+        if 0.0 > self.max_dist {
+            return (0..count).for_each(|i| out(i, DVec3::ZERO));
+        }
+        // 2. The closest hits.
+        let Some(tile) = tile else {
             for i in 0..count {
-                let colour = rays(i).map(|ray| self.along::<K>(ray, tile, Plain, &mut ()));
-                out(i, colour.unwrap_or(DVec3::ZERO));
+                let colour = rays(i).map_or(DVec3::ZERO, |ray| {
+                    let hit =
+                        (self.objects).closest::<K, _, _>(&ray, From::Eye(None), Plain, &mut ());
+                    self.ambient(&ray, hit)
+                });
+                out(i, colour);
             }
             return;
         };
-        // 2. The closest hits, along rays that all leave the eye.
+        // A span's camera rays all leave the eye.
         let eye = self.camera.viewpoint;
         let (mut dirs, mut walking) = ([DVec3::ZERO; TILE], 0);
         for (i, dir) in dirs.iter_mut().enumerate().take(count) {
@@ -242,40 +246,52 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
             }
         }
         let seen = |i: usize, hit: Option<Hit>| {
-            if i >= count {
-                return;
+            if i < count {
+                out(
+                    i,
+                    self.ambient(
+                        &Ray {
+                            base: eye,
+                            dir: dirs[i],
+                        },
+                        hit,
+                    ),
+                );
             }
-            let Some(Hit { object, t }) = hit else {
-                return out(i, DVec3::ZERO);
-            };
-            let ray = Ray {
-                base: eye,
-                dir: dirs[i],
-            };
-            // 3. The path grows by the segment.
-            let path = Path {
-                ray,
-                leaves: None,
-                weight: DVec3::ONE,
-                total_dist: 0.0 + t,
-            };
-            // 4. The ambient, read from the surface only where the material varies.
-            let look = &self.scene.objects[object].look;
-            let ambient = match look.pattern {
-                Pattern::Plain => look.material.ambient,
-                _ => {
-                    let at = (object, self.rules.object(object), false);
-                    self.surface(at, &ray, t, path.total_dist, &mut ())
-                        .1
-                        .ambient
-                }
-            };
-            // 6. I / total_dist.
-            let mut colour = DVec3::ZERO;
-            self.divided(&path, ambient, t, &mut colour, &mut ());
-            out(i, colour);
         };
         (self.objects).closest_from_eye::<K, TILE>(eye, &dirs, walking, tile, seen);
+    }
+
+    /// Steps 3, 4 and 6 of [`Tracer::trace`] for a camera ray whose path its first `hit`
+    /// ends ([`Tracer::ambient_only`]): the path's length, the ambient there (read from
+    /// the surface only where the object's material varies over it) and the colour,
+    /// [`Tracer::divided`] as in the loop; black without a hit. The same values as the
+    /// loop's, so the same colour.
+    #[inline(always)]
+    fn ambient(&self, ray: &Ray, hit: Option<Hit>) -> DVec3 {
+        let Some(Hit { object, t }) = hit else {
+            return DVec3::ZERO;
+        };
+        // 3. The path grows by the segment.
+        let path = Path {
+            ray: *ray,
+            leaves: None,
+            weight: DVec3::ONE,
+            total_dist: 0.0 + t,
+        };
+        // 4. The ambient.
+        let look = &self.scene.objects[object].look;
+        let ambient = match look.pattern {
+            Pattern::Plain => look.material.ambient,
+            _ => {
+                let at = (object, self.rules.object(object), false);
+                (self.surface(at, ray, t, path.total_dist, &mut ()).1).ambient
+            }
+        };
+        // 6. I / total_dist.
+        let mut colour = DVec3::ZERO;
+        self.divided(&path, ambient, t, &mut colour, &mut ());
+        colour
     }
 
     /// The colour along a camera ray, with its tile's list where it has one.
