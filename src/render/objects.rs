@@ -16,7 +16,7 @@
 //! The kernel is each query's type parameter, chosen by the caller once per render
 //! (`with_kernel!`), so that no object test pays for the choice.
 
-use super::bvh::{Boxes, Bvh, beats};
+use super::bvh::{Aabb, Boxes, Bvh, beats};
 use super::record::{Event, LightStep, Recorder, Skip};
 use super::tiles::{Tile, Tiles};
 use super::variant::{Kind, Rulebook};
@@ -388,7 +388,7 @@ impl<'a, B: Rulebook> Objects<'a, B> {
             // Near to far: past the best hit so far, nothing can win or tie.
             for &index in tile.objects {
                 let index = index as usize;
-                if best.is_some_and(|(_, t)| tile.nearest[index] > t * slack) {
+                if best.is_some_and(|(_, t)| tile.passed(index, t * slack)) {
                     break;
                 }
                 if let Some(t) = self.closest_test::<K, Q, R>(index, skip, ray, query, rec)
@@ -435,12 +435,10 @@ impl<'a, B: Rulebook> Objects<'a, B> {
         // t ≤ ∞ over it, as over none, and a NaN or negative t never counts.
         let mut best_t = [f64::INFINITY; N];
         let mut best = [u32::MAX; N];
-        let far = self.rules.far();
         for &index in tile.objects {
             // Near to far: past a ray's best hit so far, nothing can win or tie.
-            let nearest = tile.nearest[index as usize];
             for (lane, t) in best_t.iter().enumerate() {
-                if nearest > *t {
+                if tile.passed(index as usize, *t) {
                     walking &= !(1 << lane);
                 }
             }
@@ -460,9 +458,7 @@ impl<'a, B: Rulebook> Objects<'a, B> {
                 if walking & (1 << lane) != 0
                     && let Some(t) = test.hit::<K>(&ray)
                     && beats(Some((best[lane] as usize, best_t[lane])), index as usize, t)
-                    && t > 0.0
-                    && far.is_none_or(|far| t < far)
-                    && Boxes::admitted(boxed, &ray, t)
+                    && self.counts_boxed(boxed, &ray, t, 0.0)
                 {
                     (best[lane], best_t[lane]) = (index, t);
                 }
@@ -480,7 +476,14 @@ impl<'a, B: Rulebook> Objects<'a, B> {
     /// object's box.
     #[inline(always)]
     fn counts(&self, index: usize, ray: &Ray, t: f64, least: f64) -> bool {
-        t > least && self.rules.far().is_none_or(|far| t < far) && self.boxes.admits(index, ray, t)
+        self.counts_boxed(self.boxes.of(index), ray, t, least)
+    }
+
+    /// [`Objects::counts`] of an object whose box `boxed` is already looked up (one
+    /// lookup for a span's rays).
+    #[inline(always)]
+    fn counts_boxed(&self, boxed: Option<&Aabb>, ray: &Ray, t: f64, least: f64) -> bool {
+        t > least && self.rules.far().is_none_or(|far| t < far) && Boxes::admitted(boxed, ray, t)
     }
 
     /// Whether object `index` is out of [`Objects::closest`]'s tests: the object the ray

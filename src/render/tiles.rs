@@ -76,6 +76,16 @@ pub(crate) struct Tile<'a> {
     pub(crate) nearest: &'a [f64],
 }
 
+impl Tile<'_> {
+    /// Whether a walk of the list (near to far) whose best hit so far is at `t` is past
+    /// object `index`: it and every object after it lie beyond `t`, so none can win or
+    /// tie.
+    #[inline(always)]
+    pub(crate) fn passed(&self, index: usize, t: f64) -> bool {
+        self.nearest[index] > t
+    }
+}
+
 /// Where an object can be hit by camera rays.
 enum Reach {
     /// Through no pixel.
