@@ -79,10 +79,11 @@ thread. *Per pixel* is the whole run's instructions over the 76,800 pixels of 32
 the runs at 640x480 and at 320x240 over the pixels added: one more pixel's cost. Where
 no light is lit and nothing reflects (this plane; any scene in the ambient stage) a span
 of the render takes the first step of spec §4.2's loop alone, its rays' hits found
-together (`Tracer::ambient_span`, docs/architecture.md): before it, the plane took
-24,700,362 instructions at 320x240, 322 a pixel, 311 marginal, by the loop without its
-lights' and mirror's steps; before that, by the whole loop, 33,074,811, 431 a pixel, 420
-marginal.
+together, their directions and plane tests in the processor's vector registers
+(`Tracer::ambient_tiled`, docs/architecture.md). Before the vector registers the plane
+took 18,441,220 instructions at 320x240, 240 a pixel, 229 marginal; before the span,
+24,700,362, 322 a pixel, 311 marginal, by the loop without its lights' and mirror's
+steps; before that, by the whole loop, 33,074,811, 431 a pixel, 420 marginal.
 
 {table}
 

@@ -35,7 +35,7 @@ pub const MAX_PRECISION: f64 = record::MARGIN_REACH;
 
 use crate::scene::Scene;
 use crate::shapes::kernel::{Kernel, KernelChoice, with_kernel};
-use crate::shapes::{Ray, unit};
+use crate::shapes::{Dirs, LANES, Ray, unit, units};
 use crate::threads::Threads;
 use glam::{DVec2, DVec3};
 use std::borrow::Cow;
@@ -188,6 +188,28 @@ impl Camera {
     #[inline(always)]
     fn grid_ray(&self, x: usize, y: usize) -> Option<Ray> {
         self.ray_through(DVec3::new(self.xs[x], self.ys[y], 0.0))
+    }
+
+    /// The directions of the grid's rays through the pixels (`xs(i)`, y) for i below
+    /// `count` ([`Camera::grid_ray`]'s, the same bits), found together ([`units`]); bit
+    /// i of the mask set where lane i has a ray.
+    #[inline(always)]
+    pub(crate) fn grid_dirs(
+        &self,
+        xs: impl Fn(usize) -> usize,
+        y: usize,
+        count: usize,
+    ) -> (Dirs, u32) {
+        let eye = self.viewpoint;
+        let first = self.xs[xs(0)];
+        // The target (x, y, 0) less the eye; past `count`, a copy of the first lane's.
+        let x = std::array::from_fn(|i| match i < count {
+            true => self.xs[xs(i)],
+            false => first,
+        } - eye.x);
+        let (y, z) = ([self.ys[y] - eye.y; LANES], [0.0 - eye.z; LANES]);
+        let (dirs, valid) = units(Dirs { x, y, z });
+        (dirs, valid & ((1u64 << count) - 1) as u32)
     }
 
     /// The ray from the viewpoint through the point `target` of the screen; `None` if

@@ -23,7 +23,7 @@ use super::variant::{Kind, Rulebook};
 use super::{Camera, Options};
 use crate::scene::{Object, Scene};
 use crate::shapes::kernel::Kernel;
-use crate::shapes::{Ahead, HitNote, Notes, Ray, discriminant_note};
+use crate::shapes::{Ahead, Dirs, HitNote, LANES, Notes, Ray, discriminant_note};
 use crate::threads::Threads;
 use glam::DVec3;
 
@@ -416,32 +416,26 @@ impl<'a, B: Rulebook> Objects<'a, B> {
 
     /// [`Objects::closest`] of the camera rays from `eye` along `dirs` (a tile's span of a
     /// row; bit `lane` of `walking` clear: that lane has no ray), all in `tile`, for the
-    /// plain render, each lane's hit told to `hit(lane, hit)`: the tile's list walked
-    /// once for the span, each object's test made ready for the eye once
-    /// ([`Shape::for_base`](crate::shapes::Shape::for_base)), and each ray leaving the
-    /// walk where its own would end. Each ray gets the tests, the checks and the tie
-    /// rule of its own walk, in the same order, so the same hit.
+    /// plain render: the tile's list walked once for the span, each object's test made
+    /// ready for the eye once ([`Shape::for_base`](crate::shapes::Shape::for_base)) and
+    /// taken by the rays together ([`ForBase::hits`](crate::shapes::ForBase::hits)), and each ray leaving the walk
+    /// where its own would end. Each ray gets the tests, the checks and the tie rule of
+    /// its own walk, in the same order, so the same hit.
     #[inline(always)]
-    pub(crate) fn closest_from_eye<K: Kernel, const N: usize>(
+    pub(crate) fn closest_from_eye<K: Kernel>(
         &self,
         eye: DVec3,
-        dirs: &[DVec3; N],
+        dirs: &Dirs,
         mut walking: u32,
         tile: Tile,
-        mut hit: impl FnMut(usize, Option<Hit>),
-    ) {
-        const { assert!(N <= 32) };
+    ) -> [Option<Hit>; LANES] {
         // Each ray's best hit so far, none as (∞, u32::MAX): `beats` takes any hit with
         // t ≤ ∞ over it, as over none, and a NaN or negative t never counts.
-        let mut best_t = [f64::INFINITY; N];
-        let mut best = [u32::MAX; N];
+        let mut best_t = [f64::INFINITY; LANES];
+        let mut best = [u32::MAX; LANES];
         for &index in tile.objects {
             // Near to far: past a ray's best hit so far, nothing can win or tie.
-            for (lane, t) in best_t.iter().enumerate() {
-                if tile.passed(index as usize, *t) {
-                    walking &= !(1 << lane);
-                }
-            }
+            walking &= !tile.passed_lanes(index as usize, &best_t);
             if walking == 0 {
                 break;
             }
@@ -450,25 +444,22 @@ impl<'a, B: Rulebook> Objects<'a, B> {
             }
             let test = self.scene.objects[index as usize].shape.for_base::<K>(eye);
             let boxed = self.boxes.of(index as usize);
-            for lane in 0..N {
-                let ray = Ray {
-                    base: eye,
-                    dir: dirs[lane],
-                };
-                if walking & (1 << lane) != 0
-                    && let Some(t) = test.hit::<K>(&ray)
+            let (ts, hits) = test.hits::<K>(eye, dirs, walking);
+            for lane in 0..LANES {
+                let t = ts[lane];
+                if hits & (1 << lane) != 0
                     && beats(Some((best[lane] as usize, best_t[lane])), index as usize, t)
-                    && self.counts_boxed(boxed, &ray, t, 0.0)
+                    && self.counts_boxed(boxed, &Ray::new(eye, dirs.get(lane)), t, 0.0)
                 {
                     (best[lane], best_t[lane]) = (index, t);
                 }
             }
         }
-        for lane in 0..N {
+        std::array::from_fn(|lane| {
             let object = best[lane] as usize;
             let t = best_t[lane];
-            hit(lane, (best[lane] != u32::MAX).then_some(Hit { object, t }));
-        }
+            (best[lane] != u32::MAX).then_some(Hit { object, t })
+        })
     }
 
     /// Whether a hit on object `index` at `t` counts for [`Objects::closest`]: t above

@@ -23,12 +23,14 @@
 use super::bvh::Boxes;
 use super::lists::{Builder, Lists, MOST_OBJECTS};
 use crate::scene::Scene;
+use crate::shapes::LANES;
 use crate::threads::Threads;
 use glam::{DVec2, DVec3};
 use std::ops::Range;
+use wide::f64x8;
 
-/// Pixels along a tile's side.
-pub(crate) const TILE: usize = 8;
+/// Pixels along a tile's side: a span of a row is one set of lanes.
+pub(crate) const TILE: usize = LANES;
 
 // A tile's hiding planes are the bits of a `u32`: no tile list is kept beyond
 // `MOST_OBJECTS` planes.
@@ -83,6 +85,15 @@ impl Tile<'_> {
     #[inline(always)]
     pub(crate) fn passed(&self, index: usize, t: f64) -> bool {
         self.nearest[index] > t
+    }
+
+    /// [`Tile::passed`] of the walks of a span's rays (lane i's best hit so far at
+    /// `t[i]`), as bit i of a mask.
+    #[inline(always)]
+    pub(crate) fn passed_lanes(&self, index: usize, t: &[f64; LANES]) -> u32 {
+        f64x8::splat(self.nearest[index])
+            .simd_gt(f64x8::from(*t))
+            .to_bitmask()
     }
 }
 

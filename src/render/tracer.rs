@@ -16,7 +16,7 @@ use super::variant::{Divisor, Kind, LightRules, ObjectRules, Rulebook};
 use super::{Camera, Options, object_colour};
 use crate::scene::{Light, Material, Object, Pattern, Scene};
 use crate::shapes::kernel::Kernel;
-use crate::shapes::{Ray, Surface, unit};
+use crate::shapes::{Dirs, Ray, Surface, unit};
 use crate::threads::Threads;
 use glam::{DVec2, DVec3};
 
@@ -168,6 +168,16 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
         // the plain render took 20-55 % more CPU time at 2048x1536 (bench/ab.py, spec1, a04,
         // d04, the gallery) for 2-3 % more instructions.
         let camera = self.camera;
+        // Tiles hold for the grid's rays; compare's sampled pixels have them under
+        // jitter too.
+        if AMBIENT
+            && self.show.is_none()
+            && camera.on_grid()
+            && let Some(tile) = tile
+        {
+            let (dirs, walking) = camera.grid_dirs(xs, y, count);
+            return self.ambient_tiled::<K>(&dirs, walking, tile, count, out);
+        }
         match camera.on_grid() {
             true => {
                 let rays = |i| camera.grid_ray(xs(i), y);
@@ -208,10 +218,9 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
         }
     }
 
-    /// [`Tracer::rays`] where [`Tracer::ambient_only`] says so: each colour is step 6's
-    /// ambient over the length of the camera ray to its first hit ([`Tracer::ambient`]).
-    /// Where the rays test their tile's list, a span's hits are found together
-    /// ([`Objects::closest_from_eye`]); elsewhere (under jitter) each ray's on its own.
+    /// [`Tracer::rays`] where [`Tracer::ambient_only`] says so and the rays are not the
+    /// grid's (under jitter): each colour is step 6's ambient over the length of the
+    /// camera ray to its first hit ([`Tracer::ambient`]).
     #[inline(always)]
     fn ambient_span<K: Kernel>(
         &self,
@@ -224,42 +233,38 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
         if 0.0 > self.max_dist {
             return (0..count).for_each(|i| out(i, DVec3::ZERO));
         }
-        // 2. The closest hits.
-        let Some(tile) = tile else {
-            for i in 0..count {
-                let colour = rays(i).map_or(DVec3::ZERO, |ray| {
-                    let hit =
-                        (self.objects).closest::<K, _, _>(&ray, From::Eye(None), Plain, &mut ());
-                    self.ambient(&ray, hit)
-                });
-                out(i, colour);
-            }
-            return;
-        };
-        // A span's camera rays all leave the eye.
-        let eye = self.camera.viewpoint;
-        let (mut dirs, mut walking) = ([DVec3::ZERO; TILE], 0);
-        for (i, dir) in dirs.iter_mut().enumerate().take(count) {
-            if let Some(ray) = rays(i) {
-                debug_assert_eq!(ray.base, eye);
-                (*dir, walking) = (ray.dir, walking | 1 << i);
-            }
+        // 2. The closest hit.
+        for i in 0..count {
+            let colour = rays(i).map_or(DVec3::ZERO, |ray| {
+                let hit = (self.objects).closest::<K, _, _>(&ray, From::Eye(tile), Plain, &mut ());
+                self.ambient(&ray, hit)
+            });
+            out(i, colour);
         }
-        let seen = |i: usize, hit: Option<Hit>| {
-            if i < count {
-                out(
-                    i,
-                    self.ambient(
-                        &Ray {
-                            base: eye,
-                            dir: dirs[i],
-                        },
-                        hit,
-                    ),
-                );
-            }
-        };
-        (self.objects).closest_from_eye::<K, TILE>(eye, &dirs, walking, tile, seen);
+    }
+
+    /// [`Tracer::ambient_span`] of the grid's camera rays along `dirs` (bit i of
+    /// `walking` set where lane i has one) in `tile`: their closest hits found together
+    /// ([`Objects::closest_from_eye`]).
+    #[inline(always)]
+    fn ambient_tiled<K: Kernel>(
+        &self,
+        dirs: &Dirs,
+        walking: u32,
+        tile: Tile,
+        count: usize,
+        mut out: impl FnMut(usize, DVec3),
+    ) {
+        // 1. As in `ambient_span`.
+        if 0.0 > self.max_dist {
+            return (0..count).for_each(|i| out(i, DVec3::ZERO));
+        }
+        // 2. The closest hits.
+        let eye = self.camera.viewpoint;
+        let hits = (self.objects).closest_from_eye::<K>(eye, dirs, walking, tile);
+        for (i, hit) in hits.into_iter().enumerate().take(count) {
+            out(i, self.ambient(&Ray::new(eye, dirs.get(i)), hit));
+        }
     }
 
     /// Steps 3, 4 and 6 of [`Tracer::trace`] for a camera ray whose path its first `hit`

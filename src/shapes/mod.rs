@@ -37,6 +37,7 @@ pub use sphere::Sphere;
 use crate::error::MeaningError;
 use glam::DVec3;
 use kernel::{Kernel, KernelChoice, PlaneFrom, with_kernel};
+use wide::f64x8;
 
 /// A ray: a base point and a unit direction.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -51,6 +52,33 @@ impl Ray {
     /// The ray from `base` along the unit direction `dir`.
     pub fn new(base: DVec3, dir: DVec3) -> Ray {
         Ray { base, dir }
+    }
+}
+
+/// How many rays a span tests together ([`Dirs`]).
+pub(crate) const LANES: usize = 8;
+
+/// A span's directions by coordinate, lane i's (`x[i]`, `y[i]`, `z[i]`): the rays of a
+/// span from one base, tested together in the processor's vector registers
+/// ([`Kernel::planes_toward`]).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Dirs {
+    pub(crate) x: [f64; LANES],
+    pub(crate) y: [f64; LANES],
+    pub(crate) z: [f64; LANES],
+}
+
+impl Dirs {
+    /// Lane `i`'s direction.
+    #[inline(always)]
+    pub(crate) fn get(&self, i: usize) -> DVec3 {
+        DVec3::new(self.x[i], self.y[i], self.z[i])
+    }
+
+    /// The three coordinates' lanes in vector registers.
+    #[inline(always)]
+    pub(crate) fn lanes(&self) -> [f64x8; 3] {
+        [self.x, self.y, self.z].map(f64x8::from)
     }
 }
 
@@ -134,6 +162,31 @@ pub fn unit(v: DVec3) -> Option<DVec3> {
     }
     let w = v / scale;
     Some(w / w.length())
+}
+
+/// [`unit`] of a span's vectors, by coordinate: the same operations in the same order
+/// on each lane, so the same bits, in the processor's vector registers. Bit i of the
+/// mask is clear where [`unit`] gives `None` (that lane's direction is then
+/// meaningless).
+#[inline(always)]
+pub(crate) fn units(v: Dirs) -> (Dirs, u32) {
+    let [x, y, z] = v.lanes();
+    // As glam's `max_element` and `length`: max(|x|, max(|y|, |z|)) where max(a, b) is
+    // `if a > b { a } else { b }`, then √((x² + y²) + z²).
+    let max = |a: f64x8, b: f64x8| a.simd_gt(b).select(a, b);
+    let scale = max(x.abs(), max(y.abs(), z.abs()));
+    let (wx, wy, wz) = (x / scale, y / scale, z / scale);
+    let length = ((wx * wx + wy * wy) + wz * wz).sqrt();
+    // unit's test: a scale (≥ 0 or NaN) neither 0 nor ∞ nor NaN. (A NaN coordinate
+    // need not make the scale NaN, nor the test fail: unit then gives NaN directions.)
+    let valid =
+        (scale.simd_gt(f64x8::ZERO) & scale.simd_lt(f64x8::splat(f64::INFINITY))).to_bitmask();
+    let dirs = Dirs {
+        x: (wx / length).to_array(),
+        y: (wy / length).to_array(),
+        z: (wz / length).to_array(),
+    };
+    (dirs, valid)
 }
 
 /// Like [`unit`], but the error names the record's vector.
@@ -269,15 +322,49 @@ pub(crate) enum ForBase<'s> {
 }
 
 impl ForBase<'_> {
-    /// [`Shape::hit_by`] without notes of a `ray` from the base this was made ready for:
-    /// the same t.
+    /// [`Shape::hit_by`] without notes of the rays from `base` (the base this was made
+    /// ready for) along `dirs`, for the lanes set in `lanes`: bit i of the mask set
+    /// where lane i's ray hits, at `t[i]`. The same t as each ray's own test.
     #[inline(always)]
-    pub(crate) fn hit<K: Kernel>(&self, ray: &Ray) -> Option<f64> {
+    pub(crate) fn hits<K: Kernel>(
+        &self,
+        base: DVec3,
+        dirs: &Dirs,
+        lanes: u32,
+    ) -> ([f64; LANES], u32) {
         match self {
-            ForBase::Plane(plane, from) => K::plane_toward(plane, from, ray),
-            ForBase::Other(shape) => shape.hit_by::<K>(ray, &mut ()),
+            ForBase::Plane(plane, from) => K::planes_toward(plane, from, base, dirs, lanes),
+            ForBase::Other(shape) => each_lane(lanes, |i| {
+                let ray = Ray::new(base, dirs.get(i));
+                shape.hit_by::<K>(&ray, &mut ())
+            }),
         }
     }
+}
+
+/// The lanes set in `mask` (below [`LANES`]), lowest first: a loop over them takes
+/// the set bits only, for masks that are mostly empty (the lanes a plane's quick test
+/// leaves: a loop over every lane cost the ambient plane 16 instructions a pixel).
+#[inline(always)]
+pub(crate) fn set_lanes(mask: u32) -> impl Iterator<Item = usize> {
+    let mut left = mask & ((1 << LANES) - 1);
+    std::iter::from_fn(move || {
+        let lane = (left != 0).then(|| left.trailing_zeros() as usize);
+        left &= left.wrapping_sub(1);
+        lane
+    })
+}
+
+/// `hit(i)` of the lanes set in `lanes`, as [`ForBase::hits`] gives them.
+#[inline(always)]
+pub(crate) fn each_lane(lanes: u32, hit: impl Fn(usize) -> Option<f64>) -> ([f64; LANES], u32) {
+    let (mut ts, mut hits) = ([0.0; LANES], 0);
+    for i in set_lanes(lanes) {
+        if let Some(hit) = hit(i) {
+            (ts[i], hits) = (hit, hits | 1 << i);
+        }
+    }
+    (ts, hits)
 }
 
 /// What a query of margins learns of a test before the kernel's ([`Shape::ahead`]).
@@ -571,5 +658,70 @@ mod tests {
             Some(DVec3::new(0.6, 0.0, 0.8))
         );
         assert!(!DVec3::new(0.0, 3e200, 4e200).normalize().is_normalized());
+    }
+
+    #[test]
+    fn units_are_unit_s_bits_lane_by_lane() {
+        // Random vectors over 600 binary orders of magnitude, and the cases unit refuses
+        // or scales: zero, ∞, NaN, subnormal coordinates, one coordinate alone, -0.
+        let mut numbers = testing::Numbers(0x2545_f491_4f6c_dd1d);
+        let mut next = || numbers.next();
+        let special = [
+            0.0,
+            -0.0,
+            f64::INFINITY,
+            f64::NAN,
+            5e-324,
+            -1e-310,
+            1e300,
+            3.0,
+        ];
+        let mut cases = Vec::new();
+        for i in 0..4_000 {
+            let mut v = [0.0; 3].map(|_| (next() - 0.5) * 2f64.powf(600.0 * next() - 300.0));
+            if i % 4 == 0 {
+                v[i / 4 % 3] = special[i / 12 % special.len()];
+            }
+            if i % 16 == 1 {
+                v = [0.0, 0.0, 0.0];
+                v[i / 16 % 3] = special[i / 48 % special.len()];
+            }
+            cases.push(DVec3::from(v));
+        }
+        let (mut some, mut none) = (0, 0);
+        for span in cases.chunks(LANES) {
+            let v = Dirs {
+                x: std::array::from_fn(|i| span[i].x),
+                y: std::array::from_fn(|i| span[i].y),
+                z: std::array::from_fn(|i| span[i].z),
+            };
+            let (dirs, valid) = units(v);
+            for (i, v) in span.iter().enumerate() {
+                match unit(*v) {
+                    Some(own) => {
+                        assert!(valid & 1 << i != 0, "{v:?}");
+                        assert_eq!(
+                            dirs.get(i).to_array().map(f64::to_bits),
+                            own.to_array().map(f64::to_bits),
+                            "{v:?}"
+                        );
+                        some += 1;
+                    }
+                    None => {
+                        assert!(valid & 1 << i == 0, "{v:?}");
+                        none += 1;
+                    }
+                }
+            }
+        }
+        assert!(some > 3_000 && none > 100, "{some} {none}");
+    }
+
+    #[test]
+    fn set_lanes_are_the_mask_s_bits_below_lanes() {
+        let lanes = |mask| set_lanes(mask).collect::<Vec<_>>();
+        assert_eq!(lanes(0), Vec::<usize>::new());
+        assert_eq!(lanes(0b1010_0001), vec![0, 5, 7]);
+        assert_eq!(lanes(u32::MAX), (0..LANES).collect::<Vec<_>>());
     }
 }

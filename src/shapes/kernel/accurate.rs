@@ -37,9 +37,11 @@ use crate::shapes::kernel::dd::{
     Dd, fused, scaled, scaled_product, square, sum_as_dd, sum_as_f64, two_prod, two_sum,
 };
 use crate::shapes::{
-    AxisFrame, AxisQuadric, HitNote, Notes, Plane, Quadric, Ray, RootRule, Sphere,
+    AxisFrame, AxisQuadric, Dirs, HitNote, LANES, Notes, Plane, Quadric, Ray, RootRule, Sphere,
+    each_lane,
 };
 use glam::DVec3;
+use wide::f64x8;
 
 /// The shipped kernel.
 #[derive(Debug, Clone, Copy, Default)]
@@ -196,6 +198,49 @@ impl Kernel for Accurate {
     #[inline(always)]
     fn plane_toward(plane: &Plane, from: &PlaneFrom, ray: &Ray) -> Option<f64> {
         plane_split(plane, from, ray, &mut ())
+    }
+
+    /// [`plane_split`] of a span's rays in the processor's vector registers where one
+    /// division decides: each lane's N·D, its cancellation test, t and spec §5.1's rule
+    /// on z, the same operations in the same order as [`plane_split`]'s. A lane whose
+    /// terms cancel, or whose N·D is 0, takes [`plane_split`] itself, as do all where
+    /// the numerator's terms cancel.
+    #[inline(always)]
+    fn planes_toward(
+        plane: &Plane,
+        from: &PlaneFrom,
+        base: DVec3,
+        dirs: &Dirs,
+        lanes: u32,
+    ) -> ([f64; LANES], u32) {
+        let [x, y, z] = dirs.lanes();
+        let n = plane.normal;
+        let (ux, uy, uz) = (x * n.x, y * n.y, z * n.z);
+        // As `element_sum` and `cancels`: (x + y) + z, 2|N·D| < (|x| + |y|) + |z|.
+        let denominator = (ux + uy) + uz;
+        let terms = (ux.abs() + uy.abs()) + uz.abs();
+        let cancel = (denominator.abs() * 2.0).simd_lt(terms);
+        let parallel = denominator.simd_eq(f64x8::ZERO);
+        let quick = match from.cancels {
+            true => 0,
+            false => !(cancel | parallel).to_bitmask() & lanes,
+        };
+        let t = f64x8::splat(from.numerator) / denominator;
+        // `Plane::verdict`: t ≥ 0 (not NaN, not below 0), then z within the limit or
+        // within the slack of it, 8 EPS (|B.z| + |t|).
+        let z = t * z + base.z;
+        let slack = (t.abs() + base.z.abs()) * (8.0 * EPS);
+        let limit = f64x8::splat(plane.z_limit);
+        let counts = t.simd_ge(f64x8::ZERO) & (z.simd_le(limit) | (z - limit).simd_le(slack));
+        let (slow, slow_hits) = each_lane(lanes & !quick, |i| {
+            plane_split(plane, from, &Ray::new(base, dirs.get(i)), &mut ())
+        });
+        let t = t.to_array();
+        let ts = std::array::from_fn(|i| match quick & 1 << i != 0 {
+            true => t[i],
+            false => slow[i],
+        });
+        (ts, quick & counts.to_bitmask() | slow_hits)
     }
 }
 
@@ -914,6 +959,84 @@ mod tests {
             answers[usize::from(own)] += 1;
         }
         assert!(answers.iter().all(|&n| n > 1_000), "{answers:?}");
+    }
+
+    #[test]
+    fn a_span_s_plane_tests_are_each_ray_s_own() {
+        // Spans of 8 rays from one base toward planes through the origin region: random
+        // directions, rays nearly parallel to the plane (N·D cancels), exactly parallel,
+        // behind, hits just beyond z = 0 (the slack) and planes whose numerator cancels.
+        // Each lane's t and verdict are the bits of the plane's test of that ray alone.
+        let mut numbers = crate::shapes::testing::Numbers(0x5851_f42d_4c95_7f2d);
+        let mut next = || numbers.next();
+        let (mut hits, mut misses, mut slow, mut slack) = (0, 0, 0, 0);
+        for case in 0..3_000 {
+            let normal = DVec3::new(next() - 0.5, next() - 0.5, next() - 0.5);
+            let mut plane = Plane::new(normal, DVec3::new(next(), next(), next() - 2.0), "p")
+                .unwrap_or_else(|_| Plane::new(DVec3::Z, DVec3::ZERO, "p").unwrap());
+            if case % 7 == 0 {
+                plane.z_limit = [f64::INFINITY, 1e-3][case / 7 % 2];
+            }
+            let base = match case % 5 {
+                // The base on the plane's own point: t = 0 (±0).
+                0 if case % 2 == 0 => plane.point,
+                // The numerator N·(Q - B) cancels: the base on the plane, or nearly.
+                0 => plane.point + plane.normal.any_orthogonal_vector() * (next() * 4.0),
+                _ => DVec3::new(next() - 0.5, next() - 0.5, next() * 4.0),
+            };
+            let along = plane.normal.any_orthogonal_vector();
+            // Up the plane in z, for hits at the z limit: within rounding of it, where the
+            // slack decides.
+            let up = DVec3::Z - plane.normal * plane.normal.z;
+            let limit = plane.z_limit.min(1.0);
+            let rays: [DVec3; LANES] = std::array::from_fn(|i| {
+                let d = match (case + i) % 4 {
+                    // Within about 1e-12 of parallel: N·D's terms cancel.
+                    0 => along + plane.normal * ((next() - 0.5) * 1e-12),
+                    1 if i == 3 => along,
+                    2 if up.z > 1e-3 => {
+                        let edge = plane.point + up * ((limit - plane.point.z) / up.z);
+                        let level = plane.normal.cross(DVec3::Z);
+                        let off = level * (next() - 0.5) + up * ((next() - 0.5) * 1e-14);
+                        edge + off - base
+                    }
+                    _ => DVec3::new(next() - 0.5, next() - 0.5, next() - 0.5),
+                };
+                crate::shapes::unit(d).unwrap_or(DVec3::X)
+            });
+            let dirs = Dirs {
+                x: rays.map(|d| d.x),
+                y: rays.map(|d| d.y),
+                z: rays.map(|d| d.z),
+            };
+            let from = Accurate::plane_from(&plane, base);
+            let lanes = [0xff, 0b1011_0110][case % 2];
+            let (ts, mask) = Accurate::planes_toward(&plane, &from, base, &dirs, lanes);
+            for (i, dir) in rays.iter().enumerate() {
+                let own = Accurate::plane(&plane, &Ray::new(base, *dir), &mut ());
+                let own = own.filter(|_| lanes & 1 << i != 0);
+                let lane = (mask & 1 << i != 0).then_some(ts[i]);
+                assert_eq!(
+                    lane.map(f64::to_bits),
+                    own.map(f64::to_bits),
+                    "case {case}, lane {i}"
+                );
+                match own {
+                    Some(_) => hits += 1,
+                    None => misses += 1,
+                }
+                let under = plane.normal * *dir;
+                slow += usize::from(from.cancels || cancels(under.element_sum(), under));
+                let z = own.map(|t| base.z + t * dir.z);
+                slack += usize::from(z.is_some_and(|z| z > plane.z_limit));
+            }
+        }
+        assert!(
+            hits > 5_000 && misses > 5_000 && slow > 2_000,
+            "{hits} {misses} {slow}"
+        );
+        // The slack decided some of them.
+        assert!(slack > 20, "{slack}");
     }
 
     #[test]

@@ -24,7 +24,7 @@ pub(crate) use accurate::Accurate;
 pub(crate) use quadratic::{solve_quadratic, solve_quadratic_with_slope};
 pub(crate) use textbook::{Stable, Textbook, TextbookF32};
 
-use super::{AxisQuadric, Notes, Plane, Quadric, Ray, Sphere};
+use super::{AxisQuadric, Dirs, LANES, Notes, Plane, Quadric, Ray, Sphere, each_lane};
 use glam::DVec3;
 
 /// One way of computing hit distances: the whole hit of each family of shapes, with the
@@ -59,6 +59,23 @@ pub(crate) trait Kernel: Copy + Send + Sync + 'static {
     #[inline(always)]
     fn plane_toward(plane: &Plane, _from: &PlaneFrom, ray: &Ray) -> Option<f64> {
         Self::plane(plane, ray, &mut ())
+    }
+
+    /// [`Kernel::plane_toward`] of the rays from `base` (the base `from` was prepared
+    /// for) along `dirs`, for the lanes set in `lanes`: bit i of the mask set where lane
+    /// i's ray hits, at `t[i]`. The same t as each ray's own test; one ray at a time,
+    /// unless the kernel says.
+    #[inline(always)]
+    fn planes_toward(
+        plane: &Plane,
+        from: &PlaneFrom,
+        base: DVec3,
+        dirs: &Dirs,
+        lanes: u32,
+    ) -> ([f64; LANES], u32) {
+        each_lane(lanes, |i| {
+            Self::plane_toward(plane, from, &Ray::new(base, dirs.get(i)))
+        })
     }
 
     /// Whether this kernel's [`Kernel::sphere`] surely finds no root, told from the
