@@ -418,7 +418,8 @@ impl<'a, B: Rulebook> Objects<'a, B> {
     /// row; bit `lane` of `walking` clear: that lane has no ray), all in `tile`, for the
     /// plain render: the tile's list walked once for the span, each object's test made
     /// ready for the eye once ([`Shape::for_base`](crate::shapes::Shape::for_base)) and
-    /// taken by the rays together ([`ForBase::hits`](crate::shapes::ForBase::hits)), and each ray leaving the walk
+    /// taken by the rays together
+    /// ([`ForBase::hits`](crate::shapes::ForBase::hits)), and each ray leaving the walk
     /// where its own would end. Each ray gets the tests, the checks and the tie rule of
     /// its own walk, in the same order, so the same hit.
     #[inline(always)]

@@ -168,8 +168,8 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
         // the plain render took 20-55 % more CPU time at 2048x1536 (bench/ab.py, spec1, a04,
         // d04, the gallery) for 2-3 % more instructions.
         let camera = self.camera;
-        // Tiles hold for the grid's rays; compare's sampled pixels have them under
-        // jitter too.
+        // The grid's rays in lanes where the span has a tile's list (compare's sampled
+        // pixels have lists under jitter too: those take `ambient_span`).
         if AMBIENT
             && self.show.is_none()
             && camera.on_grid()
