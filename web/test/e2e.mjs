@@ -146,6 +146,34 @@ async function rendersAsTheCommandLine(page, name, width, height) {
   console.log(`ok 1 - and downloaded: ${ppm.name} is the command line's file, ${png.name} its pixels`);
 }
 
+// 1c. In the ambient stage too, where a span's camera rays take the lanes of vector
+// registers (src/shapes/mod.rs, `Dirs`): the WebAssembly takes the wide crate's arrays
+// there, not the SSE2 registers the command line's tests run on.
+async function rendersTheAmbientStageAsTheCommandLine(page, name, width, height) {
+  assert.equal(await openExample(page, name), 'done', name);
+  await page.fill('#height', String(height));
+  assert.equal(await setAndRender(page, '#width', String(width)), 'done');
+  const stage = async (value) => {
+    await page.evaluate(() => { document.body.dataset.state = 'edited'; });
+    await page.selectOption('#stage', value);
+    return settled(page);
+  };
+  assert.equal(await stage('ambient'), 'done');
+  const text = readFileSync(join(top, 'examples', name));
+  const cli = legacyRt(['--stage', 'ambient', String(width), String(height)], { input: text });
+  assert.equal(cli.status, 0, cli.stderr);
+  const expected = ppmPixels(cli.stdout);
+  const shown = await canvasPixels(page);
+  assert.deepEqual([shown.width, shown.height], [expected.width, expected.height], name);
+  const differing = shown.rgb.filter((byte, i) => byte !== expected.rgb[i]).length;
+  assert.equal(differing, 0, `${name}, ambient stage: ${differing} of ${shown.rgb.length} bytes differ`);
+  // Not vacuous: the stage shows something, and not the full render.
+  assert.ok(expected.rgb.some((byte) => byte !== 0), `${name}: the ambient stage is black`);
+  // The checks that follow expect the full stage.
+  assert.equal(await stage('full'), 'done');
+  console.log(`ok 1 - ${name} at ${width}x${height} in the ambient stage: the command line's bytes`);
+}
+
 // 2. An edit during a long render cancels it (the worker is ended) and renders the new text.
 async function cancelsALongRender(page) {
   assert.equal(await openExample(page, 'quadrics_gallery.txt'), 'done');
@@ -732,6 +760,7 @@ async function main() {
     }
     await rendersAsTheCommandLine(page, 'textured_planes.txt', 200, 150);
     await rendersAsTheCommandLine(page, 'quadrics_gallery.txt', 240, 180);
+    await rendersTheAmbientStageAsTheCommandLine(page, 'tiled_planes.txt', 200, 150);
     await cancelsALongRender(page);
     await showsTheError(page);
     await namesTheSizeTyped(page);
