@@ -42,9 +42,10 @@ pub struct Cause {
     /// A pixel it explains (x, y from the lower left, as `trace` takes them).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub pixel: Option<[usize; 2]>,
-    /// The whole-image causes listed before it that move the rays (in JSON their ids, as
-    /// `--variant` takes them): `pixel` is traced with them, so that the command traces
-    /// the ray the student's pixel shows.
+    /// The whole-image causes that move the rays it was found under (in JSON their ids,
+    /// as `--variant` takes them): those listed before it, or for a move and a scene
+    /// mistake stated as one cause, its move. `pixel` is traced with them, so that the
+    /// command traces the ray the student's pixel shows.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub under: Vec<Variant>,
     /// The command that traces `pixel` in the reference, when the command line knows the
@@ -644,7 +645,12 @@ fn jitter_through_image(
     if (together as f64) < NEARLY_ALL * count as f64 || breaks * BREAKS_PER_FIX > together {
         return None;
     }
-    let first = Cause::of_variants(variants, [fixed, count, breaks], subject, pixel);
+    // The pair stated as one cause, a move and a scene mistake (a row off and a far
+    // clip): its pixel is traced under the move, the ray the student's pixel shows.
+    let first = Cause {
+        under: moves.clone(),
+        ..Cause::of_variants(variants, [fixed, count, breaks], subject, pixel)
+    };
     let second = Cause {
         explains: rest,
         of: count - fixed,

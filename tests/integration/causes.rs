@@ -1633,3 +1633,58 @@ fn a_move_jittered_rays_and_a_mistake_that_changes_most_pixels_are_all_named() {
     }
     assert!(failures.is_empty(), "{failures:#?}");
 }
+
+#[test]
+fn a_move_and_a_far_clip_stated_as_one_cause_are_traced_under_the_move() {
+    // A row off, a far clip and jittered rays, drawn by the tiny tracer (not the
+    // program's code): the row off and the far clip are found together and stated as one
+    // cause, then jitter. The pair's pixel is the student's; the ray it shows is the one
+    // the move brings there, so its trace command takes the move, as the `--against`
+    // command's pixel does (the row the ray was traced for).
+    let dir = folder("causes-row-clip-jitter");
+    let mut scenes = vec![example("planes")];
+    scenes.extend(course("d04"));
+    let mut joint = 0;
+    for scene in &scenes {
+        let mistakes = rule(|m| (m.row_offset, m.far_clip, m.jitter) = (1, Some(10.0), Some(5)));
+        let (found, json) = drawn(&dir, scene, mistakes);
+        let name = scene.display();
+        assert!(found.contains(&"jitter".to_string()), "{name}: {json:#}");
+        let causes = json["causes"].as_array().unwrap();
+        for cause in causes
+            .iter()
+            .filter(|c| c["variants"].as_array().unwrap().len() == 2)
+        {
+            assert_eq!(cause["id"], "row-offset=1,far-clip=10", "{name}: {cause:#}");
+            assert_eq!(
+                cause["under"],
+                serde_json::json!(["row-offset=1"]),
+                "{cause:#}"
+            );
+            let command = cause["trace"].as_str().unwrap();
+            assert!(command.contains("--variant row-offset=1 <"), "{command}");
+            // The ray traced there goes past the far clip before it meets anything.
+            let trace = traced(command);
+            let closest = (trace.lines())
+                .find_map(|line| line.trim().strip_prefix("closest: "))
+                .unwrap_or_else(|| panic!("{trace}"));
+            let t: f64 = closest.rsplit("t = ").next().unwrap().parse().unwrap();
+            assert!(t >= 10.0, "{command}: {trace}");
+            joint += 1;
+        }
+        // The debug trace's pixel is the ray's own: the row above the student's pixel
+        // ((0, 0) at the lower left), which the program traced and wrote a row off.
+        let text = diagnosis_text(scene, &dir.join("student.ppm"));
+        if let Some(cause) = causes
+            .iter()
+            .find(|c| c["id"] == "row-offset=1,far-clip=10")
+        {
+            let [x, y] = [0, 1].map(|i| cause["pixel"][i].as_u64().unwrap());
+            let against = text.lines().find(|l| l.contains("--against")).unwrap();
+            let pixel = format!("trace {x} {} ", y + 1);
+            assert!(against.contains(&pixel), "{pixel}: {text}");
+        }
+    }
+    // Every scene states the pair as one cause.
+    assert_eq!(joint, scenes.len());
+}
