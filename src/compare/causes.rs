@@ -242,13 +242,41 @@ fn scene_causes(case: Case, mask: (&[u64], usize)) -> SceneCauses {
         // what the candidate leaves is read for jitter against the candidate's image.
         let left = mask.1.saturating_sub(explained);
         if left > 0
-            && let Some(Through::Second([_, jitter])) = jitter_through(case, mask, &found)
+            && let Some(Through::Second([pair, jitter])) = jitter_through(case, mask, &found)
             && supported(jitter.explains, jitter.of, 0)
-            && named(&supported_causes, &jitter.under)
         {
-            causes.extend(supported_causes);
-            causes.push(jitter);
-            return (found, focus, causes);
+            if named(&supported_causes, &jitter.under) {
+                causes.extend(supported_causes);
+                causes.push(jitter);
+                return (found, focus, causes);
+            }
+            // Jitter read under a move that the causes stated do not name: a mistake that
+            // changes nearly every pixel (a far clip that blacks out most of the image) in
+            // an image a row off, where the move alone explains too few pixels to be
+            // stated. Where jitter read under the move leaves under half of what it leaves
+            // read in place, the move and the mistake are stated as one cause, then
+            // jitter (d01 a row off, clipped at 10 and jittered was told the clip alone).
+            let others: Vec<Variant> = (pair.variants.iter())
+                .filter(|v| !SHIFTS.contains(&v.kind))
+                .copied()
+                .collect();
+            let shown = (pair.subject.clone(), pair.pixel);
+            let unmoved = jitter_through_image(case, mask, &others, shown);
+            // What each reading leaves unexplained (jitter read first in place: nothing).
+            let left_by = |first: &Cause, jitter: &Cause| {
+                let read = supported(jitter.explains, jitter.of, 0);
+                (first.of - first.explains).saturating_sub(if read { jitter.explains } else { 0 })
+            };
+            let unmoved_left = match &unmoved {
+                Some(Through::Second([first, jitter])) => left_by(first, jitter),
+                Some(Through::First(..)) => 0,
+                None => left,
+            };
+            let moved_left = left_by(&pair, &jitter);
+            if moved_left * 2 < unmoved_left && supported(pair.explains, pair.of, pair.breaks) {
+                causes.extend([pair, jitter]);
+                return (found, focus, causes);
+            }
         }
         causes.extend(supported_causes);
         return (found, focus, causes);
