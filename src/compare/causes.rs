@@ -405,10 +405,11 @@ fn after_jitter(
 }
 
 /// Whether what a reading of jitter (`cause`) left looks like a rule of the bytes beside
-/// it: at least [`RULE_LEFT`] of the differing pixels, half of them at most a level past
-/// what the reference takes inside the pixel (`off`). A rule moves a byte by one, past
-/// the footprint's colours where they are flat; what jittered rays alone leave is a few
-/// pixels on edges and mirrors, where the footprint's samples missed a colour.
+/// it: at least [`RULE_LEFT`] of the differing pixels, half of them at most a level above
+/// what the reference takes inside the pixel and in no channel below it (`off`). A rule
+/// raises a byte by one, past the footprint's colours where they are flat; what jittered
+/// rays alone leave is a few pixels on edges and mirrors, where the footprint's samples
+/// missed a colour, below it as often as above.
 fn rule_suspected(cause: &Cause, off: LevelOff) -> bool {
     let left = cause.of.saturating_sub(cause.explains);
     left as f64 >= RULE_LEFT * cause.of as f64 && off.left > 0 && 2 * off.near >= off.left
@@ -417,9 +418,11 @@ fn rule_suspected(cause: &Cause, off: LevelOff) -> bool {
 /// The share of the differing pixels jittered rays, read in place, must leave for a rule
 /// of the bytes beside them to be looked for ([`rule_suspected`]). Alone, they leave
 /// 0.2 % to 0.35 % on the course scenes at 320x240 (d04 38 of 22,054 pixels, d06 112 of
-/// 32,149), but spec1 1.3 % (416 of 32,362, 278 of them a level past: its mirrors), whose
-/// rules are then read in vain; with a rule of the bytes, 3.6 % and more (d04 scaled 841
-/// of 23,227, 829 a level past; examples/shadows.txt at 160x120, 1.5 %).
+/// 32,149), but spec1 1.3 % (416 of 32,362: its mirrors), of which 168 lie at most a
+/// level above and none below, so that its rules are not read (counting a level below
+/// too, 278 did, and they were read in vain); with a rule of the bytes, 3.6 % and more
+/// (d04 scaled 841 of 23,227, 829 a level past; examples/shadows.txt at 160x120, 1.5 %),
+/// nearly all of them above (spec1 rounded, 30,536 of 30,721; d06 scaled, 1,747 of 1,848).
 const RULE_LEFT: f64 = 0.01;
 
 /// Jittered rays and a rule of the bytes (d06 jittered and scaled by 256: jitter read
@@ -1492,8 +1495,8 @@ fn jitter_cause(
                 })
             })
         };
-        // Of the pixels read and left, those at most a level past what the reference
-        // takes inside the pixel, and how many were left.
+        // Of the pixels read and left, those at most a level above what the reference
+        // takes inside the pixel and in no channel below, and how many were left.
         let level_off = std::cell::Cell::new(LevelOff::default());
         // Whether the student's pixel i lies within what the reference takes inside the
         // pixel, per channel, within the tolerance: the samples stop once it does.
@@ -1510,16 +1513,17 @@ fn jitter_cause(
                 })
             });
             if !within {
-                let past = (0..3)
-                    .map(|c| {
-                        let below = low[c].saturating_sub(s[c].saturating_add(levels));
-                        below.max(s[c].saturating_sub(high[c].saturating_add(levels)))
-                    })
+                // A rule of the bytes (round-bytes, scale-256) gives a byte at or above the
+                // truncation's, at most a level above: a pixel below the footprint's
+                // colours in any channel is no rule's.
+                let below = (0..3).any(|c| s[c].saturating_add(levels) < low[c]);
+                let above = (0..3)
+                    .map(|c| s[c].saturating_sub(high[c].saturating_add(levels)))
                     .max()
                     .unwrap_or(0);
                 let LevelOff { near, left } = level_off.get();
                 level_off.set(LevelOff {
-                    near: near + usize::from(past <= 1),
+                    near: near + usize::from(!below && above <= 1),
                     left: left + 1,
                 });
             }
@@ -1593,8 +1597,9 @@ fn jitter_cause(
 }
 
 /// Of the differing pixels a reading of jitter left (each outside what the reference
-/// takes inside its pixel), how many lie at most a level past it: a rule of the bytes
-/// beside jittered rays moves a byte by one ([`rule_suspected`]).
+/// takes inside its pixel), how many lie at most a level above it and in no channel
+/// below: a rule of the bytes beside jittered rays raises a byte by one
+/// ([`rule_suspected`]).
 #[derive(Debug, Clone, Copy, Default)]
 struct LevelOff {
     near: usize,
