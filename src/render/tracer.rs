@@ -168,6 +168,11 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
         // the plain render took 20-55 % more CPU time at 2048x1536 (bench/ab.py, spec1, a04,
         // d04, the gallery) for 2-3 % more instructions.
         let camera = self.camera;
+        // 1. of the ambient spans: a camera ray's path is 0 long, cut only under a
+        // MAX_DIST below 0.
+        if AMBIENT && self.show.is_none() && 0.0 > self.max_dist {
+            return (0..count).for_each(|i| out(i, DVec3::ZERO));
+        }
         // The grid's rays in lanes where the span has a tile's list (compare's sampled
         // pixels have lists under jitter too: those take `ambient_span`).
         if AMBIENT
@@ -229,11 +234,7 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
         count: usize,
         mut out: impl FnMut(usize, DVec3),
     ) {
-        // 1. A camera ray's path is 0 long: cut only under a MAX_DIST below 0.
-        if 0.0 > self.max_dist {
-            return (0..count).for_each(|i| out(i, DVec3::ZERO));
-        }
-        // 2. The closest hit.
+        // 1. Taken by `span`. 2. The closest hit.
         for i in 0..count {
             let colour = rays(i).map_or(DVec3::ZERO, |ray| {
                 let hit = (self.objects).closest::<K, _, _>(&ray, From::Eye(tile), Plain, &mut ());
@@ -255,11 +256,7 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
         count: usize,
         mut out: impl FnMut(usize, DVec3),
     ) {
-        // 1. As in `ambient_span`.
-        if 0.0 > self.max_dist {
-            return (0..count).for_each(|i| out(i, DVec3::ZERO));
-        }
-        // 2. The closest hits.
+        // 1. Taken by `span`. 2. The closest hits.
         let eye = self.camera.viewpoint;
         let hits = (self.objects).closest_from_eye::<K>(eye, dirs, walking, tile);
         for (i, hit) in hits.into_iter().enumerate().take(count) {
