@@ -157,23 +157,72 @@ fn marked<const PATHS: bool>(
     precision: f64,
     slots: &[AtomicU64],
 ) -> Vec<Mark> {
+    marked_by::<PATHS>(scene, options, precision, slots, Shortcut::Ambient)
+}
+
+/// Which pixels take a shorter way than the loop of spec §4.2 ([`Tracer::pixel`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Shortcut {
+    /// Every pixel where [`Tracer::ambient_only`] holds: [`Tracer::ambient_pixel`], the
+    /// loop's first step alone: the same marks and paths (the unit test below), and
+    /// `compare` of a02 a row off 18 % fewer instructions (docs/architecture.md).
+    Ambient,
+    /// None: the tests' check of the shortcut.
+    #[cfg(test)]
+    None,
+}
+
+/// [`marked`], with `shortcut`.
+fn marked_by<const PATHS: bool>(
+    scene: &Scene,
+    options: &Options,
+    precision: f64,
+    slots: &[AtomicU64],
+    shortcut: Shortcut,
+) -> Vec<Mark> {
     let setup = Setup::for_image(scene, options);
-    // As in `render`: the rules as written are constants to the tracer.
+    // As in `render`: the rules as written are constants to the tracer, and so is the
+    // way each pixel is traced.
     match setup.rules.as_written() {
-        true => margins_of::<PATHS, _>(
+        true => by::<PATHS, _>(
             &setup,
             setup.tracer_with(AsWritten, options),
             options,
             precision,
             slots,
+            shortcut,
         ),
-        false => margins_of::<PATHS, _>(&setup, setup.tracer(options), options, precision, slots),
+        false => by::<PATHS, _>(
+            &setup,
+            setup.tracer(options),
+            options,
+            precision,
+            slots,
+            shortcut,
+        ),
+    }
+}
+
+/// [`margins_of`] with the way each pixel is traced chosen from `shortcut` and the
+/// tracer.
+fn by<const PATHS: bool, B: Rulebook>(
+    setup: &Setup,
+    tracer: Tracer<B>,
+    options: &Options,
+    precision: f64,
+    slots: &[AtomicU64],
+    shortcut: Shortcut,
+) -> Vec<Mark> {
+    match shortcut == Shortcut::Ambient && tracer.ambient_only() {
+        true => margins_of::<PATHS, true, B>(setup, tracer, options, precision, slots),
+        false => margins_of::<PATHS, false, B>(setup, tracer, options, precision, slots),
     }
 }
 
 /// Every pixel's mark at `precision`, in output order; with `PATHS` its paths in
-/// `slots`.
-fn margins_of<const PATHS: bool, B: Rulebook>(
+/// `slots`; with `AMBIENT` each pixel by [`Tracer::ambient_pixel`] (where
+/// [`Tracer::ambient_only`] holds), else by [`Tracer::pixel`].
+fn margins_of<const PATHS: bool, const AMBIENT: bool, B: Rulebook>(
     setup: &Setup,
     tracer: Tracer<B>,
     options: &Options,
@@ -187,7 +236,10 @@ fn margins_of<const PATHS: bool, B: Rulebook>(
     with_kernel!(options.kernel, K => {
         let per_pixel = |x: usize, y: usize| -> Mark {
             let mut rec = margins::Margins::<PATHS>::new(&sizes);
-            let colour = tracer.pixel::<K>(x, y, sizes.query(), &mut rec);
+            let colour = match AMBIENT {
+                true => tracer.ambient_pixel::<K>(x, y, sizes.query(), &mut rec),
+                false => tracer.pixel::<K>(x, y, sizes.query(), &mut rec),
+            };
             // The colour is some sixteen roundings from the hit point: ambient plus each
             // light's diffuse × emissivity × cos θ / dist, over the path, times the
             // mirrors.
@@ -233,4 +285,76 @@ fn margins_of<const PATHS: bool, B: Rulebook>(
         };
         each_span(setup, options, per_span, &mut |_| {})
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::render::{Stage, Variant};
+    use crate::shapes::kernel::KernelChoice::{Accurate, TextbookF32};
+    use std::path::Path;
+
+    /// Every pixel's marks and paths, by `shortcut`.
+    fn marks(scene: &Scene, options: &Options, precision: f64, shortcut: Shortcut) -> Vec<u64> {
+        let pixels = options.width * options.height;
+        let slots: Vec<AtomicU64> = (0..pixels).map(|_| AtomicU64::new(0)).collect();
+        let marks = marked_by::<true>(scene, options, precision, &slots, shortcut);
+        let paths = slots.into_iter().map(AtomicU64::into_inner);
+        marks.into_iter().map(|m| m.0).chain(paths).collect()
+    }
+
+    #[test]
+    fn the_ambient_shortcut_gives_the_loop_s_marks_and_paths() {
+        // Every example and course scene at the ambient stage (tiles, textures and
+        // shaders among them: the shortcut reads a patterned surface), and the course's
+        // ambient assignments as they are, at both precisions and under the kernels that
+        // compute roots otherwise; each pixel's mark and paths as the loop gives them.
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let mut paths = Vec::new();
+        for dir in [root.join("examples"), root.join("../shared/course-scenes")] {
+            if let Ok(entries) = std::fs::read_dir(dir) {
+                paths.extend(entries.flatten().map(|e| e.path()));
+            }
+        }
+        paths.retain(|p| p.extension().is_some_and(|e| e == "txt"));
+        paths.sort();
+        assert!(paths.len() >= 20, "the examples are found");
+        // The rules the shortcut reads otherwise than the loop does: the camera's, the
+        // division, the bytes, the tiles' colours and the far clip of the closest hit.
+        let variants = [
+            "",
+            "round-bytes",
+            "jitter,no-distance",
+            "pixel-centre,tile-parity,scale-256",
+            "far-clip=6,segment-distance",
+        ];
+        let mut checked = 0;
+        for path in &paths {
+            let scene = crate::load(&std::fs::read_to_string(path).unwrap()).unwrap();
+            for stage in [Stage::Ambient, Stage::Full] {
+                for (kernel, precision) in [(Accurate, 1.2e-7), (TextbookF32, 2.3e-16)] {
+                    let mut options = Options::new(64, 48);
+                    options.stage = stage;
+                    options.kernel = kernel;
+                    let setup = Setup::for_image(&scene, &options);
+                    if !setup.tracer(&options).ambient_only() {
+                        continue;
+                    }
+                    for variants in variants {
+                        let parsed = variants.split(',').filter(|v| !v.is_empty());
+                        let parsed = parsed.map(|v| Variant::parse(v).unwrap());
+                        let parsed: Vec<Variant> = parsed.collect();
+                        let options = options.with_variants(&parsed).unwrap();
+                        let fast = marks(&scene, &options, precision, Shortcut::Ambient);
+                        let slow = marks(&scene, &options, precision, Shortcut::None);
+                        let case = format!("{} {stage:?} {kernel:?} {variants}", path.display());
+                        assert!(fast == slow, "{case}");
+                        checked += 1;
+                    }
+                }
+            }
+        }
+        // Each scene at the ambient stage, the course's three ambient scenes as they are.
+        assert!(checked >= 2 * 5 * paths.len(), "{checked} renders checked");
+    }
 }

@@ -135,6 +135,42 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
         self.along::<K>(ray, None, query, rec)
     }
 
+    /// [`Tracer::pixel`] where [`Tracer::ambient_only`] holds: the loop's first step
+    /// alone, as [`Tracer::ambient_span`] takes it, each step told to `rec`. The same
+    /// colour and the same events as the loop's, but the surface of a hit on a plain
+    /// object, which such a colour does not read (no light, no mirror and no pattern
+    /// reads it after).
+    #[inline(always)]
+    pub(crate) fn ambient_pixel<K: Kernel>(
+        &self,
+        x: usize,
+        y: usize,
+        query: impl Query,
+        rec: &mut impl Recorder,
+    ) -> DVec3 {
+        let Some(ray) = self.camera.ray(x, y) else {
+            return DVec3::ZERO;
+        };
+        // 1. The camera ray's path is 0 long.
+        let total_dist = 0.0;
+        if total_dist > self.max_dist && !query.never_cut() {
+            rec.record(|| Event::CutOff { total_dist });
+            return DVec3::ZERO;
+        }
+        rec.record(|| Event::Segment {
+            depth: 0,
+            ray,
+            total_dist,
+        });
+        // 2. The closest hit.
+        let from = From::Eye(self.objects.tile(x, y));
+        let hit = self.objects.closest::<K, _, _>(&ray, from, query, rec);
+        rec.record(|| Event::Closest {
+            hit: hit.map(|h| (h.object, h.t)),
+        });
+        self.ambient(&ray, hit, query, rec)
+    }
+
     /// Whether pixel (x, y)'s tile sees no object: every pixel of it is the background,
     /// without a ray.
     #[inline(always)]
@@ -238,7 +274,7 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
         for i in 0..count {
             let colour = rays(i).map_or(DVec3::ZERO, |ray| {
                 let hit = (self.objects).closest::<K, _, _>(&ray, From::Eye(tile), Plain, &mut ());
-                self.ambient(&ray, hit)
+                self.ambient(&ray, hit, Plain, &mut ())
             });
             out(i, colour);
         }
@@ -260,7 +296,10 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
         let eye = self.camera.viewpoint;
         let hits = (self.objects).closest_from_eye::<K>(eye, dirs, walking, tile);
         for (i, hit) in hits.into_iter().enumerate().take(count) {
-            out(i, self.ambient(&Ray::new(eye, dirs.get(i)), hit));
+            out(
+                i,
+                self.ambient(&Ray::new(eye, dirs.get(i)), hit, Plain, &mut ()),
+            );
         }
     }
 
@@ -270,7 +309,13 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
     /// [`Tracer::divided`] as in the loop; black without a hit. The same values as the
     /// loop's, so the same colour.
     #[inline(always)]
-    fn ambient(&self, ray: &Ray, hit: Option<Hit>) -> DVec3 {
+    fn ambient(
+        &self,
+        ray: &Ray,
+        hit: Option<Hit>,
+        query: impl Query,
+        rec: &mut impl Recorder,
+    ) -> DVec3 {
         let Some(Hit { object, t }) = hit else {
             return DVec3::ZERO;
         };
@@ -286,13 +331,13 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
         let ambient = match look.pattern {
             Pattern::Plain => look.material.ambient,
             _ => {
-                let at = (object, self.rules.object(object), false);
-                (self.surface(at, ray, t, path.total_dist, &mut ()).1).ambient
+                let at = (object, self.rules.object(object), query.other_tile(object));
+                (self.surface(at, ray, t, path.total_dist, rec).1).ambient
             }
         };
         // 6. I / total_dist.
         let mut colour = DVec3::ZERO;
-        self.divided(&path, ambient, t, &mut colour, &mut ());
+        self.divided(&path, ambient, t, &mut colour, rec);
         colour
     }
 
