@@ -913,6 +913,53 @@ pub(super) fn shifted_from(
     moved: &Options,
     moves: &[Variant],
 ) -> Option<impl Fn(usize) -> Option<usize> + use<>> {
+    let width = options.width;
+    let Shift { row_from, columns } = shift(options, moved, moves)?;
+    Some(move |i: usize| {
+        let (r, x) = (i / width, i % width);
+        Some(row_from(r)? * width + columns.from(x)?)
+    })
+}
+
+/// [`shifted_from`] a row at a time: for a row of the image under `moved`, the
+/// reference's row whose rays it shows, and for a column the reference's.
+struct Shift<R> {
+    row_from: R,
+    columns: Columns,
+}
+
+/// The columns a column offset reads: column x shows the reference's x + N, inside the
+/// window from `first` to `end`.
+#[derive(Clone, Copy)]
+struct Columns {
+    offset: i64,
+    first: usize,
+    end: usize,
+}
+
+impl Columns {
+    /// Column x reads x + `offset`, in a window `width` wide.
+    fn of(offset: i64, width: usize) -> Columns {
+        let w = width as i64;
+        let first = (-offset).clamp(0, w) as usize;
+        let end = (w - offset).clamp(first as i64, w) as usize;
+        Columns { offset, first, end }
+    }
+
+    /// The reference's column that column `x` shows, `None` past the window's edge.
+    fn from(self, x: usize) -> Option<usize> {
+        (self.first..self.end)
+            .contains(&x)
+            .then(|| (x as i64 + self.offset) as usize)
+    }
+}
+
+/// The [`Shift`] of `moves` ([`shifted_from`]).
+fn shift(
+    options: &Options,
+    moved: &Options,
+    moves: &[Variant],
+) -> Option<Shift<impl Fn(usize) -> Option<usize> + use<>>> {
     let has = |options: &Options, kind: Kind| options.variants.iter().any(|v| v.kind == kind);
     if !moves.iter().all(|v| SHIFTS.contains(&v.kind)) || has(options, Kind::Jitter) {
         return None;
@@ -921,13 +968,15 @@ pub(super) fn shifted_from(
     let (width, height) = (options.width, options.height);
     // Whether each image is written upside down, once: `Options::row_of` looks.
     let flipped = [has(options, Kind::UpsideDown), has(moved, Kind::UpsideDown)];
-    let (w, h) = (width as i64, height as i64);
-    Some(move |i: usize| {
-        let (r, x) = (i / width, (i % width) as i64);
-        let y = output_row(r, height, flipped[1]) as i64;
-        let (x, y) = (x + columns, y + rows);
-        ((0..w).contains(&x) && (0..h).contains(&y))
-            .then(|| output_row(y as usize, height, flipped[0]) * width + x as usize)
+    let row_from = move |r: usize| {
+        let y = output_row(r, height, flipped[1]) as i64 + rows;
+        (0..height as i64)
+            .contains(&y)
+            .then(|| output_row(y as usize, height, flipped[0]))
+    };
+    Some(Shift {
+        row_from,
+        columns: Columns::of(columns, width),
     })
 }
 
@@ -948,21 +997,15 @@ fn offsets(variants: &[Variant]) -> (i64, i64) {
 /// its buffer held, so a difference there is the offset's.
 fn uncovered(variants: &[Variant], width: usize, height: usize) -> impl Fn(usize) -> bool {
     let (rows, columns) = offsets(variants);
-    let beyond = |at: usize, n: i64, size: usize| {
-        let traced = at as i64 + n;
-        traced < 0 || traced >= size as i64
-    };
-    // Row r traces y = H-1-r+N: beyond the window where r < N or r >= H+N; column x
-    // traces x+N.
-    let none = rows == 0 && columns == 0;
-    move |i: usize| {
-        if none {
-            return false;
-        }
-        let (x, r) = (i % width.max(1), i / width.max(1));
-        (rows != 0 && beyond(output_row(r.min(height - 1), height, false), rows, height))
-            || (columns != 0 && beyond(x, columns, width))
-    }
+    // Row r traces y = H-1-r+N: inside the window for r from N to H+N; column x traces
+    // x+N. The rows inside are one run of pixels.
+    let h = height as i64;
+    let first_row = rows.clamp(0, h);
+    let end_row = (h + rows).clamp(first_row, h);
+    let covered = first_row as usize * width..end_row as usize * width;
+    let columns = Columns::of(columns, width);
+    let every_column = columns.first == 0 && columns.end == width;
+    move |i: usize| !covered.contains(&i) || (!every_column && columns.from(i % width).is_none())
 }
 
 /// The pixels of the reference that agree with the student's image within the tolerance
@@ -1263,14 +1306,37 @@ impl Scorer<'_> {
             return None;
         }
         let reach = Reach::of(scene, self.given, &rest)?;
-        let from = shifted_from(self.options, options, &moves)?;
+        let Shift { row_from, columns } = shift(self.options, options, &moves)?;
         let under_rest = self.options.with_variants(&rest).ok()?;
-        let mut moved = vec![[0u8; 3]; pixels];
-        reached(scene, &under_rest, (reach, rendered), 0..pixels, |j, b| {
-            moved[j] = b
-        });
+        // The reference's pixels under the other variants: traced again where they reach,
+        // else (a byte rule, or none) stepped as each is read.
+        let traced = match reach.traces() {
+            false => Vec::new(),
+            true => {
+                let mut moved = vec![[0u8; 3]; pixels];
+                reached(scene, &under_rest, (reach, rendered), 0..pixels, |j, b| {
+                    moved[j] = b
+                });
+                moved
+            }
+        };
+        let (paths, bytes) = (&rendered.paths, &rendered.image.pixels);
+        let moved = |j: usize| match traced.is_empty() {
+            true => reach.untouched(paths[j], bytes[j]),
+            false => traced[j],
+        };
+        let width = options.width;
+        let mut image: Vec<Option<[u8; 3]>> = Vec::with_capacity(pixels);
+        for r in 0..options.height {
+            match row_from(r) {
+                Some(row) => {
+                    let at = |x: usize| columns.from(x).map(|x| moved(row * width + x));
+                    image.extend((0..width).map(at));
+                }
+                None => image.extend(std::iter::repeat_n(None, width)),
+            }
+        }
         let uncovered = uncovered(variants, options.width, options.height);
-        let image: Vec<Option<[u8; 3]>> = (0..pixels).map(|i| from(i).map(|j| moved[j])).collect();
         let edge: Vec<usize> = (0..pixels)
             .filter(|&i| image[i].is_none() && !uncovered(i))
             .collect();
@@ -1899,6 +1965,51 @@ mod tests {
         assert!(printed.iter().all(|p| p.len() <= 4), "{printed:?}");
         assert_eq!(values.len(), 2 + 12);
         assert!(values.iter().all(|&v| v > 0.05 && v < 0.2));
+    }
+
+    #[test]
+    fn a_move_reads_the_pixel_whose_ray_it_shows() {
+        // Pixel (x, output row r) of a W x H image under the moves traces the camera's
+        // (x + columns, y + rows), y = H-1-r (r upside down); the reference wrote that ray
+        // at output row H-1-y' (y' upside down): for every pixel of small images, the
+        // index `shifted_from` gives, and whether `uncovered` (which reads the offsets
+        // alone) says the ray lies past the edge, as the definition gives them.
+        for (width, height) in [(5, 4), (1, 3), (4, 1), (3, 3)] {
+            for moves in [
+                "row-offset=1",
+                "row-offset=-2",
+                "column-offset=1",
+                "column-offset=-3",
+                "row-offset=2,column-offset=-1",
+                "upside-down",
+                "upside-down,row-offset=1,column-offset=1",
+                "row-offset=4",
+            ] {
+                let moves: Vec<Variant> = moves
+                    .split(',')
+                    .map(|v| Variant::parse(v).unwrap())
+                    .collect();
+                let options = Options::new(width, height);
+                let moved = options.with_variants(&moves).unwrap();
+                let from = shifted_from(&options, &moved, &moves).unwrap();
+                let uncovered = uncovered(&moves, width, height);
+                let (rows, columns) = offsets(&moves);
+                let flipped = moves.iter().any(|v| v.kind == Kind::UpsideDown);
+                let (w, h) = (width as i64, height as i64);
+                for i in 0..width * height {
+                    let (x, r) = ((i % width) as i64, (i / width) as i64);
+                    let y = if flipped { r } else { h - 1 - r };
+                    let (tx, ty) = (x + columns, y + rows);
+                    let inside = (0..w).contains(&tx) && (0..h).contains(&ty);
+                    let expected = inside.then(|| ((h - 1 - ty) * w + tx) as usize);
+                    assert_eq!(from(i), expected, "{width}x{height} {moves:?} pixel {i}");
+                    // The offsets alone: the rows as the image is written the right way up.
+                    let ty = h - 1 - r + rows;
+                    let beyond = !(0..w).contains(&tx) || !(0..h).contains(&ty);
+                    assert_eq!(uncovered(i), beyond, "{width}x{height} {moves:?} pixel {i}");
+                }
+            }
+        }
     }
 
     #[test]
