@@ -307,6 +307,7 @@ pub(crate) fn with_mask(
         ignored,
         given: &given,
         untouched: Default::default(),
+        retraced: Default::default(),
     };
     let exact_counts = |variants: &[Variant]| scorer.counts(variants);
     // The exact agreement, from the counts.
@@ -1066,7 +1067,14 @@ struct Scorer<'a> {
     /// The variants the reference was rendered with.
     given: &'a [Variant],
     untouched: [std::cell::OnceCell<Agreeing>; 3],
+    /// The last variants whose reach was traced again over the whole image, with the
+    /// bytes of the pixels it touches: a move with a mistake and the mistake alone trace
+    /// the same pixels under the same rules ([`Scorer::retraced`]).
+    retraced: Retraced,
 }
+
+/// [`Scorer::retraced`]'s one set of variants (in [`Variant::id`] order) and its bytes.
+type Retraced = std::cell::RefCell<Option<(Vec<String>, std::rc::Rc<Vec<[u8; 3]>>)>>;
 
 impl Scorer<'_> {
     /// What `variants` do to the image, pixel by pixel ([`Counts`]): every pixel they can
@@ -1144,10 +1152,10 @@ impl Scorer<'_> {
                 };
                 // A byte rule alone traces nothing (and sets up no renderer).
                 let bytes = match traced.is_empty() {
-                    true => Vec::new(),
-                    false => super::render_pixels(scene, options, &traced),
+                    true => Default::default(),
+                    false => self.retraced(variants, options, &traced),
                 };
-                let mut next = traced.iter().zip(bytes).peekable();
+                let mut next = traced.iter().zip(bytes.iter().copied()).peekable();
                 for i in 0..pixels {
                     match next.peek() {
                         Some(&(&at, b)) if at == i => {
@@ -1165,6 +1173,33 @@ impl Scorer<'_> {
                 }
             }
         }
+    }
+}
+
+impl Scorer<'_> {
+    /// The bytes of the pixels `traced` (a reach's, over the whole image) under
+    /// `variants` (`options`): rendered, or the last set's where the variants are the
+    /// same. A move with a mistake and the mistake alone (the diagnosis counts both)
+    /// trace the same pixels under the same rules; one set is kept, an image's bytes at
+    /// most.
+    fn retraced(
+        &self,
+        variants: &[Variant],
+        options: &Options,
+        traced: &[usize],
+    ) -> std::rc::Rc<Vec<[u8; 3]>> {
+        let mut ids: Vec<String> = variants.iter().map(|v| v.id()).collect();
+        ids.sort();
+        let mut last = self.retraced.borrow_mut();
+        if let Some((held, bytes)) = last.as_ref()
+            && *held == ids
+            && bytes.len() == traced.len()
+        {
+            return bytes.clone();
+        }
+        let bytes = std::rc::Rc::new(super::render_pixels(self.scene, options, traced));
+        *last = Some((ids, bytes.clone()));
+        bytes
     }
 }
 
@@ -1310,17 +1345,24 @@ impl Scorer<'_> {
         let under_rest = self.options.with_variants(&rest).ok()?;
         // The reference's pixels under the other variants: traced again where they reach,
         // else (a byte rule, or none) stepped as each is read.
+        let (paths, bytes) = (&rendered.paths, &rendered.image.pixels);
         let traced = match reach.traces() {
             false => Vec::new(),
             true => {
-                let mut moved = vec![[0u8; 3]; pixels];
-                reached(scene, &under_rest, (reach, rendered), 0..pixels, |j, b| {
-                    moved[j] = b
-                });
+                // As `reached` gives them, the traced pixels' bytes those the mistake
+                // alone had (or will have).
+                let touched: Vec<usize> =
+                    (0..pixels).filter(|&i| reach.touches(paths[i])).collect();
+                let retraced = self.retraced(&rest, &under_rest, &touched);
+                let mut moved: Vec<[u8; 3]> = (0..pixels)
+                    .map(|j| reach.untouched(paths[j], bytes[j]))
+                    .collect();
+                for (&j, &b) in touched.iter().zip(retraced.iter()) {
+                    moved[j] = b;
+                }
                 moved
             }
         };
-        let (paths, bytes) = (&rendered.paths, &rendered.image.pixels);
         let moved = |j: usize| match traced.is_empty() {
             true => reach.untouched(paths[j], bytes[j]),
             false => traced[j],
@@ -1891,6 +1933,7 @@ mod tests {
                 ignored: &[],
                 given: &[],
                 untouched: Default::default(),
+                retraced: Default::default(),
             };
             let mut candidates = vec![
                 vec![Variant::of(Kind::RoundBytes)],
