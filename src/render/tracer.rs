@@ -240,8 +240,9 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
         if AMBIENT && self.show.is_none() {
             return self.ambient_span::<K>(rays, tile, count, out);
         }
-        // Under --show (never together) each ray's diagnostic colour.
-        if !TOGETHER || self.show.is_some() {
+        // Under --show (never together) each ray's diagnostic colour; a ray alone (a
+        // sampled pixel of compare's) without the other lanes' steps.
+        if !TOGETHER || self.show.is_some() || count == 1 {
             for i in 0..count {
                 let colour = match rays(i) {
                     Some(ray) => self.along::<K>(ray, tile, Plain, &mut ()),
