@@ -1073,8 +1073,8 @@ struct Scorer<'a> {
     retraced: Retraced,
 }
 
-/// [`Scorer::retraced`]'s one set of variants (in [`Variant::id`] order) and its bytes.
-type Retraced = std::cell::RefCell<Option<(Vec<String>, std::rc::Rc<Vec<[u8; 3]>>)>>;
+/// [`Scorer::retraced`]'s one set of variants, in the order given, and its bytes.
+type Retraced = std::cell::RefCell<Option<(Vec<Variant>, std::rc::Rc<Vec<[u8; 3]>>)>>;
 
 impl Scorer<'_> {
     /// What `variants` do to the image, pixel by pixel ([`Counts`]): every pixel they can
@@ -1188,17 +1188,15 @@ impl Scorer<'_> {
         options: &Options,
         traced: &[usize],
     ) -> std::rc::Rc<Vec<[u8; 3]>> {
-        let mut ids: Vec<String> = variants.iter().map(|v| v.id()).collect();
-        ids.sort();
         let mut last = self.retraced.borrow_mut();
         if let Some((held, bytes)) = last.as_ref()
-            && *held == ids
+            && held == variants
             && bytes.len() == traced.len()
         {
             return bytes.clone();
         }
         let bytes = std::rc::Rc::new(super::render_pixels(self.scene, options, traced));
-        *last = Some((ids, bytes.clone()));
+        *last = Some((variants.to_vec(), bytes.clone()));
         bytes
     }
 }
