@@ -24,7 +24,7 @@
 //! that render is worth making.
 
 use super::Reach;
-use super::causes::supported;
+use super::causes::{HALF, supported};
 use super::{Reference, is_set, within};
 use crate::render::trace::object_name;
 use crate::render::variant::{Needs, Row, Scope, Site, output_row};
@@ -396,6 +396,18 @@ pub(crate) fn with_mask(
         .filter(|&(_, n)| n > as_it_is)
         .max_by(|a, b| a.1.total_cmp(&b.1))
         .map(|(m, _)| m);
+    // An image upside down, as found above or, where no move brings the reference's
+    // pixels within a level of the student's, hidden by a mistake of the colours
+    // ([`hidden_flip`]). (Offsets paired so were chosen wrong: examples/studio.txt two
+    // rows off without the division by the distance was paired with another offset and
+    // told nothing.)
+    let flipped = best_moved.filter(|m| m.kind == Kind::UpsideDown);
+    let paired_move = flipped.or_else(|| {
+        let flip = candidates.iter().find(|v| v.kind == Kind::UpsideDown)?;
+        let moved = options.with_variant(*flip).ok()?;
+        let from = shifted_from(options, &moved, &[*flip])?;
+        hidden_flip(reference, student, &samples[1].0, &from).then_some(*flip)
+    });
     // The pixel's centre moves every ray a little, so its pixels agree under it only with
     // the student's rule of the bytes: paired with each rule from the start too (spec1
     // with both agreed on 516 pixels under pixel-centre alone and was told jitter).
@@ -405,11 +417,31 @@ pub(crate) fn with_mask(
     let tried_first: Vec<Vec<Variant>> = (candidates.iter().map(|&v| vec![v]))
         .chain(moved_bytes)
         .collect();
-    let mut first_round: Vec<(Vec<Variant>, f64)> = (tried_first.into_iter())
-        .filter_map(|v| Some((estimate_on(0, &v)?.0, v)))
-        .map(|(agreement, v)| (v, agreement))
-        .filter(|(_, agreement)| *agreement > before)
-        .collect();
+    let first_try = |tried: Vec<Vec<Variant>>| -> Vec<(Vec<Variant>, f64)> {
+        (tried.into_iter())
+            .filter_map(|v| Some((estimate_on(0, &v)?.0, v)))
+            .map(|(agreement, v)| (v, agreement))
+            .filter(|(_, agreement)| *agreement > before)
+            .collect()
+    };
+    let mut first_round = first_try(tried_first);
+    // Where no candidate alone (nor the move with a rule of the bytes) is estimated to
+    // explain half of the differing pixels, an image upside down is paired with every
+    // other candidate: it and a mistake of the colours that changes nearly every lit
+    // pixel hide each other (a room of walls upside down whose light falls off with the
+    // square of the distance: under either alone no pixel agrees, and it was told
+    // nothing). An offset of a few rows or columns leaves most rays near where they were,
+    // so that the mistake of the colours alone explains most pixels and the offset is
+    // found as its partner.
+    let half = before + (1.0 - before) * HALF;
+    if let Some(m) = paired_move
+        && first_round.iter().all(|(_, agreement)| *agreement < half)
+    {
+        let pairs = (candidates.iter())
+            .filter(|v| !SHIFTS.contains(&v.kind) && !rules(v))
+            .map(|&v| vec![m, v]);
+        first_round.extend(first_try(pairs.collect()));
+    }
     // More candidates near the best of a kind: each tried on the small sample, kept
     // where it does better than the image as it is.
     let try_near = |near: Vec<Variant>,
@@ -902,6 +934,43 @@ fn reached(
         each(i, pixel);
     }
 }
+
+/// Whether the reference upside down (`from`) is nearer the student's pixel than the
+/// reference as it is (the sum of the channels' differences), on the pixels `sample`, on
+/// at least twice as many as it is farther, and on a tenth of them at least
+/// ([`HIDDEN_FLIP`]): an image upside down whose colours a mistake changes everywhere
+/// still shows each object's pixels nearer their own colours than another object's (d05
+/// upside down with its light falling off with the square of the distance: 401 pixels
+/// nearer, 102 farther, of 506). An offset of a few rows or columns leaves most rays near
+/// where they were, so that the mistake of the colours alone explains most pixels and the
+/// offset is found as its partner; offsets judged so were chosen wrong (a smooth image a
+/// row off is nearer the student's under the neighbouring offsets too: spec1 two rows
+/// off without the division by the distance was paired with one row off and told
+/// nothing).
+fn hidden_flip(
+    reference: &Image,
+    student: &Image,
+    sample: &[usize],
+    from: &dyn Fn(usize) -> Option<usize>,
+) -> bool {
+    let apart =
+        |a: [u8; 3], b: [u8; 3]| -> u32 { (0..3).map(|c| u32::from(a[c].abs_diff(b[c]))).sum() };
+    let [mut nearer, mut farther] = [0, 0];
+    for &i in sample {
+        let Some(j) = from(i) else { continue };
+        let theirs = student.pixels[i];
+        let (flipped, own) = (
+            apart(reference.pixels[j], theirs),
+            apart(reference.pixels[i], theirs),
+        );
+        nearer += usize::from(flipped < own);
+        farther += usize::from(flipped > own);
+    }
+    nearer >= 2 * farther && nearer * HIDDEN_FLIP >= sample.len()
+}
+
+/// [`hidden_flip`]'s least share of the large sample: a pixel in this many.
+const HIDDEN_FLIP: usize = 10;
 
 /// Where `moves` only shift the pixels (rows and columns off, the image upside down) of
 /// the image `options` render: for a pixel of the image under `moved` (its index),
