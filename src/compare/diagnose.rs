@@ -1410,36 +1410,26 @@ impl Scorer<'_> {
         let reach = Reach::of(scene, self.given, &rest)?;
         let Shift { row_from, columns } = shift(self.options, options, &moves)?;
         let under_rest = self.options.with_variants(&rest).ok()?;
-        // The reference's pixels under the other variants: traced again where they reach,
-        // else (a byte rule, or none) stepped as each is read.
+        // The reference's pixels under the other variants, as `reached` gives them: stepped
+        // under their rule of the bytes, and traced again where they reach (the bytes the
+        // mistake alone had, or will have: `Scorer::retraced`).
         let (paths, bytes) = (&rendered.paths, &rendered.image.pixels);
-        let traced = match reach.traces() {
-            false => Vec::new(),
-            true => {
-                // As `reached` gives them, the traced pixels' bytes those the mistake
-                // alone had (or will have).
-                let touched: Vec<usize> =
-                    (0..pixels).filter(|&i| reach.touches(paths[i])).collect();
-                let retraced = self.retraced(&rest, &under_rest, &touched);
-                let mut moved: Vec<[u8; 3]> = (0..pixels)
-                    .map(|j| reach.untouched(paths[j], bytes[j]))
-                    .collect();
-                for (&j, &b) in touched.iter().zip(retraced.iter()) {
-                    moved[j] = b;
-                }
-                moved
+        let mut moved: Vec<[u8; 3]> = (0..pixels)
+            .map(|j| reach.untouched(paths[j], bytes[j]))
+            .collect();
+        if reach.traces() {
+            let touched: Vec<usize> = (0..pixels).filter(|&i| reach.touches(paths[i])).collect();
+            let retraced = self.retraced(&rest, &under_rest, &touched);
+            for (&j, &b) in touched.iter().zip(retraced.iter()) {
+                moved[j] = b;
             }
-        };
-        let moved = |j: usize| match traced.is_empty() {
-            true => reach.untouched(paths[j], bytes[j]),
-            false => traced[j],
-        };
+        }
         let width = options.width;
         let mut image: Vec<Option<[u8; 3]>> = Vec::with_capacity(pixels);
         for r in 0..options.height {
             match row_from(r) {
                 Some(row) => {
-                    let at = |x: usize| columns.from(x).map(|x| moved(row * width + x));
+                    let at = |x: usize| columns.from(x).map(|x| moved[row * width + x]);
                     image.extend((0..width).map(at));
                 }
                 None => image.extend(std::iter::repeat_n(None, width)),
