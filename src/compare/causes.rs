@@ -11,7 +11,7 @@
 //! it explains at least half of the differing pixels left and breaks almost none
 //! ([`supported`]); otherwise the report says no cause explains them.
 
-use super::diagnose::{Diagnosis, Focus, SHIFTS, with_mask};
+use super::diagnose::{Diagnosis, Focus, SHIFTS, units, with_mask};
 use super::flips::{Flip, flips};
 use super::{Reference, differing, for_each_set, is_set, within};
 use crate::render::variant::{Kind, Site};
@@ -1102,13 +1102,14 @@ fn stated(found: &[Diagnosis], differing: usize) -> Vec<Cause> {
     // A cause, with the pixel that shows it: where it was rendered alone, its own, except
     // for the pair's partner, whose pixel is the pair's (one the first alone leaves); and
     // the partner listed after a first that moves the rays is traced under it.
+    let best_units = units(&best.variants);
     let cause = |variants: &[Variant], (explains, of, breaks), before: &[Variant]| {
-        let partner = best.variants.len() == 2 && variants == &best.variants[1..];
+        let partner = best_units.len() == 2 && variants == best_units[1];
         let pixel = match partner {
             true => best.pixel,
             false => found_alone(variants).and_then(|d| d.pixel).or(best.pixel),
         };
-        let under = match partner && before == &best.variants[..1] && moving(before) {
+        let under = match partner && before == best_units[0] && moving(before) {
             true => before.to_vec(),
             false => Vec::new(),
         };
@@ -1123,7 +1124,7 @@ fn stated(found: &[Diagnosis], differing: usize) -> Vec<Cause> {
     // scene's, else the one that alone explains more.
     let whole = |v: &[Variant]| matches!(v[0].kind.row().site, Site::Camera | Site::Bytes);
     let explained_alone = |v: &[Variant]| alone(v).map_or(0, |(fixed, _)| fixed);
-    let mut order: Vec<&[Variant]> = best.variants.chunks(1).collect();
+    let mut order = best_units.clone();
     order.sort_by_key(|&v| (!whole(v), std::cmp::Reverse(explained_alone(v))));
     let Some((fixed, broken)) = alone(order[0]) else {
         return Vec::new();

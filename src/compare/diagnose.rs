@@ -387,15 +387,38 @@ pub(crate) fn with_mask(
             + sample_a.iter().filter(|i| close(i)).count() as f64 * weight(agreeing, sample_a.len())
     };
     let as_it_is = within_one(&|i| Some(i));
-    let best_moved = (candidates.iter().filter(|v| SHIFTS.contains(&v.kind)))
-        .filter_map(|&m| {
-            let moved = options.with_variant(m).ok()?;
-            let from = shifted_from(options, &moved, &[m])?;
-            Some((m, within_one(&from)))
-        })
-        .filter(|&(_, n)| n > as_it_is)
-        .max_by(|a, b| a.1.total_cmp(&b.1))
-        .map(|(m, _)| m);
+    let shifts: Vec<Variant> = (candidates.iter())
+        .filter(|v| SHIFTS.contains(&v.kind))
+        .copied()
+        .collect();
+    // The best of `moves` (each a set of moves), with its count, where it beats the image
+    // as it is.
+    let best_of = |moves: &mut dyn Iterator<Item = Vec<Variant>>| {
+        moves
+            .filter_map(|moves| {
+                let moved = options.with_variants(&moves).ok()?;
+                let from = shifted_from(options, &moved, &moves)?;
+                let near = within_one(&from);
+                Some((moves, near))
+            })
+            .filter(|(_, n)| *n > as_it_is)
+            .max_by(|a, b| a.1.total_cmp(&b.1))
+    };
+    let best_alone = best_of(&mut shifts.iter().map(|&m| vec![m]));
+    let best_moved = best_alone.as_ref().map(|(moves, _)| moves[0]);
+    // And the image upside down with each offset, where that beats every move alone: a
+    // program that writes its rows from the top and one row off (d01 so moved was told
+    // nothing; an offset alone agreed best, on 7 % of its pixels). Tried as the pair it
+    // is; the searches below pair the best move alone.
+    let flip = shifts.iter().find(|v| v.kind == Kind::UpsideDown).copied();
+    let flipped_offsets = flip.into_iter().flat_map(|flip| {
+        (shifts.iter())
+            .filter(|v| v.kind != Kind::UpsideDown)
+            .map(move |&offset| vec![flip, offset])
+    });
+    let two_moves = best_of(&mut flipped_offsets.into_iter())
+        .filter(|(_, n)| best_alone.as_ref().is_none_or(|(_, alone)| n > alone))
+        .map(|(moves, _)| moves);
     // An image upside down, as found above or, where no move brings the reference's
     // pixels within a level of the student's, hidden by a mistake of the colours
     // ([`hidden_flip`]). (Offsets paired so were chosen wrong: examples/studio.txt two
@@ -412,9 +435,14 @@ pub(crate) fn with_mask(
     // the student's rule of the bytes: paired with each rule from the start too (spec1
     // with both agreed on 516 pixels under pixel-centre alone and was told jitter).
     let centre = (candidates.iter()).filter(|v| v.kind == Kind::PixelCentre);
-    let moved_bytes = (best_moved.iter().chain(centre))
-        .flat_map(|&m| candidates.iter().filter(rules).map(move |&r| vec![m, r]));
+    let moved_bytes = (best_moved.iter().map(|&m| vec![m]))
+        .chain(two_moves.clone())
+        .chain(centre.map(|&c| vec![c]))
+        .flat_map(|moves| {
+            (candidates.iter().filter(rules)).map(move |&r| [&moves[..], &[r]].concat())
+        });
     let tried_first: Vec<Vec<Variant>> = (candidates.iter().map(|&v| vec![v]))
+        .chain(two_moves)
         .chain(moved_bytes)
         .collect();
     let first_try = |tried: Vec<Vec<Variant>>| -> Vec<(Vec<Variant>, f64)> {
@@ -492,8 +520,12 @@ pub(crate) fn with_mask(
     // order): the first not among `not` (sorted), and not one an offset leaves uncovered,
     // which shows what a buffer held, not the ray.
     let pixel_of = |variants: &[Variant], fixed: &[usize], not: &[usize]| {
-        let shown = uncovered(variants, reference.width, reference.height);
-        let covered = || fixed.iter().filter(|&&i| !shown(i));
+        let shown = options.with_variants(variants).ok().map(|o| uncovered(&o));
+        let covered = || {
+            fixed
+                .iter()
+                .filter(|&&i| !shown.as_ref().is_some_and(|s| s(i)))
+        };
         (covered().find(|i| not.binary_search(i).is_err()))
             .or(covered().next())
             .or(fixed.first())
@@ -516,13 +548,14 @@ pub(crate) fn with_mask(
         .collect();
     // Best first; a stable sort keeps the table's order among equals.
     estimated.sort_by(|a, b| b.0.agreement.total_cmp(&a.0.agreement));
-    // One variant scored exactly, for the causes' order, with the first pixel of the large
+    // One cause's variants (one variant, or the moves of an image upside down and an
+    // offset) scored exactly, for the causes' order, with the first pixel of the large
     // sample it fixes where `pixel`.
-    let alone = |one: Variant, pixel: bool| {
-        let (agreement, counts) = exact(&[one])?;
-        let fixed = || estimate(&[one]).and_then(|(_, fixed)| pixel_of(&[one], &fixed, &[]));
+    let alone = |one: &[Variant], pixel: bool| {
+        let (agreement, counts) = exact(one)?;
+        let fixed = || estimate(one).and_then(|(_, fixed)| pixel_of(one, &fixed, &[]));
         Some(Tried {
-            variants: vec![one],
+            variants: one.to_vec(),
             agreement,
             max_dist_range: None,
             pixel: if pixel { fixed() } else { None },
@@ -557,9 +590,11 @@ pub(crate) fn with_mask(
             counts: Some(counts),
             ..tried
         });
-        // A move with a rule of the bytes: each alone too, for the causes' order.
-        if let [_, _] = pair[..] {
-            found.extend(pair.into_iter().filter_map(|one| alone(one, true)));
+        // A move (or an image upside down and an offset) with a rule of the bytes: each
+        // cause alone too, for the causes' order.
+        let units = units(&pair);
+        if let [_, _] = units[..] {
+            found.extend(units.into_iter().filter_map(|one| alone(one, true)));
         }
     }
     // MAX_DIST can change only the pixels whose path reflects: it is estimated (at the
@@ -611,11 +646,14 @@ pub(crate) fn with_mask(
     // The best one with each other candidate: a second mistake often shows only once the
     // first is undone (an image upside down hides everything else).
     if let Some(best) = found.first().filter(|best| best.agreement < 1.0).cloned() {
-        let first = best.variants[0];
+        // Its first cause: one variant, or an image upside down and an offset.
+        let first = units(&best.variants)[0].to_vec();
+        let with = |partner: Variant| [&first[..], &[partner]].concat();
         let mut estimated = found.iter().map(|t| t.variants[0]);
         let max_dist = estimated.rfind(|v| v.kind == Kind::MaxDist);
         let partners = candidates.iter().copied().chain(max_dist);
-        let partners: Vec<Variant> = partners.filter(|p| p.id() != first.id()).collect();
+        let partners: Vec<Variant> =
+            (partners.filter(|p| first.iter().all(|f| p.id() != f.id()))).collect();
         // Under a first that only moves the pixels (a row off, upside down), the partner
         // is looked for on the pixels it leaves, where the samples of every differing
         // pixel would hold a handful.
@@ -624,7 +662,7 @@ pub(crate) fn with_mask(
         // pair's exact agreement and counts.
         let better = |top: Option<(Variant, (f64, Vec<usize>))>| {
             let (partner, (_, fixed)) = top.filter(|t| t.1.0 > best.agreement)?;
-            let (agreement, counts) = exact(&[first, partner])?;
+            let (agreement, counts) = exact(&with(partner))?;
             (agreement > best.agreement).then_some((partner, fixed, agreement, counts))
         };
         // Of partners estimated on the pixels the first leaves, best first: those that tie
@@ -639,18 +677,16 @@ pub(crate) fn with_mask(
                 .take(RANKED))
             .find_map(|top| better(Some(top)))
         };
-        let shift = SHIFTS.contains(&first.kind);
-        let top = match shift.then(|| scorer.left(first)).flatten() {
-            Some(left) => better_of(scorer.best_partners(first, partners, &left)),
+        let shift = first.iter().all(|v| SHIFTS.contains(&v.kind));
+        let top = match shift.then(|| scorer.left(&first)).flatten() {
+            Some(left) => better_of(scorer.best_partners(&first, partners, &left)),
             None => {
                 let mut pairs: Vec<(Vec<Variant>, f64)> = (partners.iter())
-                    .filter_map(|&partner| {
-                        Some((vec![first, partner], estimate_on(0, &[first, partner])?.0))
-                    })
+                    .filter_map(|&partner| Some((with(partner), estimate_on(0, &with(partner))?.0)))
                     .collect();
                 shortlist(&mut pairs);
-                let pairs =
-                    (pairs.into_iter()).filter_map(|(pair, _)| Some((pair[1], estimate(&pair)?)));
+                let pairs = (pairs.into_iter())
+                    .filter_map(|(pair, _)| Some((*pair.last()?, estimate(&pair)?)));
                 let top =
                     pairs.max_by(|a, b| a.1.0.total_cmp(&b.1.0).then(std::cmp::Ordering::Greater));
                 // A first that explains nearly all leaves too few pixels for the samples of
@@ -669,8 +705,8 @@ pub(crate) fn with_mask(
                 });
                 let on_left = weak
                     .then(|| {
-                        let left = scorer.left(first)?;
-                        better_of(scorer.best_partners(first, partners, &left))
+                        let left = scorer.left(&first)?;
+                        better_of(scorer.best_partners(&first, partners, &left))
                     })
                     .flatten();
                 [general, on_left]
@@ -682,17 +718,17 @@ pub(crate) fn with_mask(
         if let Some((partner, fixed, agreement, counts)) = top {
             // The pair's pixel: one the first alone leaves, so that it shows the partner
             // (the samples are in pixel order).
-            let alone_fixed = estimate(&[first]).map_or(Vec::new(), |(_, fixed)| fixed);
+            let alone_fixed = estimate(&first).map_or(Vec::new(), |(_, fixed)| fixed);
             let pixel = (fixed.iter().find(|i| alone_fixed.binary_search(i).is_err()))
                 .or(fixed.first())
                 .copied();
-            let range = match (first.kind, partner.kind) {
+            let range = match (first[0].kind, partner.kind) {
                 (Kind::MaxDist, _) => best.max_dist_range,
                 (_, Kind::MaxDist) => found.iter().find_map(|t| t.max_dist_range),
                 _ => None,
             };
             let pair = Tried {
-                variants: vec![first, partner],
+                variants: with(partner),
                 agreement,
                 max_dist_range: range,
                 pixel,
@@ -702,7 +738,7 @@ pub(crate) fn with_mask(
             // The partner alone too: which of the two comes first is what each explains
             // alone (a whole-image mistake may hide the other's pixels).
             if !found.iter().any(|t| t.variants == [partner]) {
-                found.extend(alone(partner, false));
+                found.extend(alone(&[partner], false));
             }
         }
     }
@@ -739,7 +775,7 @@ pub(crate) fn with_mask(
         found.insert(0, tried);
         for one in pair {
             if !found.iter().any(|t| t.variants == [one]) {
-                found.extend(alone(one, true));
+                found.extend(alone(&[one], true));
             }
         }
     };
@@ -754,10 +790,10 @@ pub(crate) fn with_mask(
         // The move's own best partner, looked for on the pixels it leaves: the parameter
         // may stand for another mistake (a far object hidden, as a far clip).
         let partners = (candidates.iter().copied()).filter(|p| p.id() != m.id());
-        let by_partner = (scorer.left(m))
+        let by_partner = (scorer.left(&[m]))
             .and_then(|left| {
                 (scorer
-                    .best_partners(m, partners.collect(), &left)
+                    .best_partners(&[m], partners.collect(), &left)
                     .into_iter())
                 .next()
             })
@@ -864,14 +900,14 @@ pub(crate) fn with_mask(
     let pair_first = (found.first()).filter(|t| t.agreement < 1.0 && t.variants.len() == 2);
     if let Some(top) = pair_first.cloned()
         && let Some(k) = (top.variants.iter()).position(|v| continuous(&v))
-        && let Some(left) = scorer.left(top.variants[1 - k])
+        && let Some(left) = scorer.left(&top.variants[1 - k..2 - k])
     {
         let (other, kind) = (top.variants[1 - k], top.variants[k].kind);
         let values = (other_values().into_iter())
             .filter(|v| v.kind == kind)
             .chain([top.variants[k]])
             .collect();
-        let ranked = scorer.best_partners(other, values, &left);
+        let ranked = scorer.best_partners(&[other], values, &left);
         let best = (ranked.into_iter())
             .filter(|(v, _)| v.kind == kind && v.line.is_none())
             .find(|(v, _)| *v != top.variants[k]);
@@ -1062,16 +1098,21 @@ fn offsets(variants: &[Variant]) -> (i64, i64) {
     (offset(Kind::RowOffset), offset(Kind::ColumnOffset))
 }
 
-/// Whether output pixel i is one that a row or column offset among `variants` leaves
-/// uncovered (its ray beyond the window): a program with that mistake writes there what
-/// its buffer held, so a difference there is the offset's.
-fn uncovered(variants: &[Variant], width: usize, height: usize) -> impl Fn(usize) -> bool {
-    let (rows, columns) = offsets(variants);
-    // Row r traces y = H-1-r+N: inside the window for r from N to H+N; column x traces
-    // x+N. The rows inside are one run of pixels.
-    let h = height as i64;
-    let first_row = rows.clamp(0, h);
-    let end_row = (h + rows).clamp(first_row, h);
+/// Whether output pixel i of the image `options` render is one that a row or column
+/// offset among their variants leaves uncovered (its ray beyond the window): a program
+/// with that mistake writes there what its buffer held, so a difference there is the
+/// offset's.
+fn uncovered(options: &Options) -> impl Fn(usize) -> bool + use<> {
+    let variants: Vec<Variant> = options.variants.iter().collect();
+    let (rows, columns) = offsets(&variants);
+    let (width, h) = (options.width, options.height as i64);
+    // Row r traces y = H-1-r+N: inside the window for r from N to H+N; written upside
+    // down, y = r+N, for r from -N to H-N. Column x traces x+N. The rows inside are one
+    // run of pixels.
+    let flipped = variants.iter().any(|v| v.kind == Kind::UpsideDown);
+    let first = if flipped { -rows } else { rows };
+    let first_row = first.clamp(0, h);
+    let end_row = (h + first).clamp(first_row, h);
     let covered = first_row as usize * width..end_row as usize * width;
     let columns = Columns::of(columns, width);
     let every_column = columns.first == 0 && columns.end == width;
@@ -1158,7 +1199,7 @@ impl Scorer<'_> {
                 .get(i / 64)
                 .is_some_and(|w| w >> (i % 64) & 1 == 1)
         };
-        let uncovered = uncovered(variants, options.width, options.height);
+        let uncovered = uncovered(&options);
         let tally = |i: usize, agrees_now: bool| match (was_differing(i), agrees_now) {
             _ if ignored(i) => {}
             // What a program with the offset writes there is its buffer's: the offset
@@ -1187,7 +1228,7 @@ impl Scorer<'_> {
         let (scene, rendered) = (self.scene, self.rendered);
         let pixels = rendered.image.pixels.len();
         let agrees = |i: usize, b: [u8; 3]| within(b, self.student.pixels[i], self.levels);
-        let uncovered = uncovered(variants, options.width, options.height);
+        let uncovered = uncovered(options);
         let reach = match rendered.paths.len() == pixels {
             true => Reach::of(scene, self.given, variants),
             false => None,
@@ -1275,13 +1316,12 @@ impl Scorer<'_> {
     /// offset's uncovered edge, neither): each a bit a pixel (pixel i: bit i % 64 of word
     /// i / 64) and how many; `None` where it does not apply. A move of the pixels (a row
     /// off, upside down) moves the reference's; another is traced where it reaches.
-    fn left(&self, first: Variant) -> Option<[(Vec<u64>, usize); 2]> {
-        let options = self.options.with_variant(first).ok()?;
-        let first = [first];
-        let uncovered = uncovered(&first, options.width, options.height);
+    fn left(&self, first: &[Variant]) -> Option<[(Vec<u64>, usize); 2]> {
+        let options = self.options.with_variants(first).ok()?;
+        let uncovered = uncovered(&options);
         let words = self.rendered.image.pixels.len().div_ceil(64);
         let [mut left, mut kept] = [(vec![0u64; words], 0), (vec![0u64; words], 0)];
-        self.agreement_under(&first, &options, |i, agrees_now| {
+        self.agreement_under(first, &options, |i, agrees_now| {
             if uncovered(i) {
                 return;
             }
@@ -1300,12 +1340,12 @@ impl Scorer<'_> {
     /// with the agreement estimated and the pixels of the large sample it fixes.
     fn best_partners(
         &self,
-        first: Variant,
+        first: &[Variant],
         mut partners: Vec<Variant>,
         [(left, left_count), (kept, kept_count)]: &[(Vec<u64>, usize); 2],
     ) -> Vec<(Variant, (f64, Vec<usize>))> {
         let (scene, options) = (self.scene, self.options);
-        let Ok(moved) = options.with_variant(first) else {
+        let Ok(moved) = options.with_variants(first) else {
             return Vec::new();
         };
         let pixels = self.rendered.image.pixels.len();
@@ -1435,7 +1475,7 @@ impl Scorer<'_> {
                 None => image.extend(std::iter::repeat_n(None, width)),
             }
         }
-        let uncovered = uncovered(variants, options.width, options.height);
+        let uncovered = uncovered(options);
         let edge: Vec<usize> = (0..pixels)
             .filter(|&i| image[i].is_none() && !uncovered(i))
             .collect();
@@ -1446,6 +1486,17 @@ impl Scorer<'_> {
 /// The variants that move the image's pixels without changing them: what a pixel shows
 /// is the reference's pixel from elsewhere ([`shifted_from`]).
 pub(super) const SHIFTS: [Kind; 3] = [Kind::RowOffset, Kind::ColumnOffset, Kind::UpsideDown];
+
+/// The causes `variants` state: the moves they begin with as one (an image upside down
+/// and a row off is one loop that writes the rows), then each other variant alone.
+pub(super) fn units(variants: &[Variant]) -> Vec<&[Variant]> {
+    let moves = (variants.iter())
+        .take_while(|v| SHIFTS.contains(&v.kind))
+        .count();
+    let (moves, others) = variants.split_at(moves);
+    let moves = Some(moves).filter(|m| !m.is_empty());
+    moves.into_iter().chain(others.chunks(1)).collect()
+}
 
 /// The place of a byte rule's [`Agreeing`] among the three: none, round-bytes, scale-256.
 fn rule_slot(rule: Option<Kind>) -> usize {
@@ -2072,8 +2123,8 @@ mod tests {
         // Pixel (x, output row r) of a W x H image under the moves traces the camera's
         // (x + columns, y + rows), y = H-1-r (r upside down); the reference wrote that ray
         // at output row H-1-y' (y' upside down): for every pixel of small images, the
-        // index `shifted_from` gives, and whether `uncovered` (which reads the offsets
-        // alone) says the ray lies past the edge, as the definition gives them.
+        // index `shifted_from` gives, and whether `uncovered` says the ray lies past the
+        // edge, as the definition gives them.
         for (width, height) in [(5, 4), (1, 3), (4, 1), (3, 3)] {
             for moves in [
                 "row-offset=1",
@@ -2083,6 +2134,7 @@ mod tests {
                 "row-offset=2,column-offset=-1",
                 "upside-down",
                 "upside-down,row-offset=1,column-offset=1",
+                "upside-down,row-offset=-2",
                 "row-offset=4",
             ] {
                 let moves: Vec<Variant> = moves
@@ -2092,7 +2144,7 @@ mod tests {
                 let options = Options::new(width, height);
                 let moved = options.with_variants(&moves).unwrap();
                 let from = shifted_from(&options, &moved, &moves).unwrap();
-                let uncovered = uncovered(&moves, width, height);
+                let uncovered = uncovered(&moved);
                 let (rows, columns) = offsets(&moves);
                 let flipped = moves.iter().any(|v| v.kind == Kind::UpsideDown);
                 let (w, h) = (width as i64, height as i64);
@@ -2103,10 +2155,11 @@ mod tests {
                     let inside = (0..w).contains(&tx) && (0..h).contains(&ty);
                     let expected = inside.then(|| ((h - 1 - ty) * w + tx) as usize);
                     assert_eq!(from(i), expected, "{width}x{height} {moves:?} pixel {i}");
-                    // The offsets alone: the rows as the image is written the right way up.
-                    let ty = h - 1 - r + rows;
-                    let beyond = !(0..w).contains(&tx) || !(0..h).contains(&ty);
-                    assert_eq!(uncovered(i), beyond, "{width}x{height} {moves:?} pixel {i}");
+                    assert_eq!(
+                        uncovered(i),
+                        !inside,
+                        "{width}x{height} {moves:?} pixel {i}"
+                    );
                 }
             }
         }

@@ -347,8 +347,8 @@ pub fn diagnosis(report: &Report) -> Vec<String> {
             let both: Vec<Variant> = (first.variants.iter().chain(&second.variants))
                 .copied()
                 .collect();
-            let pair = (diagnosis.iter())
-                .find(|d| !moved_jitter && both.len() == 2 && same_variants(&d.variants, &both));
+            let pair =
+                (diagnosis.iter()).find(|d| !moved_jitter && same_variants(&d.variants, &both));
             let (explains, breaks) = match pair.and_then(|p| Some((p.explains?, p.breaks?))) {
                 Some(counts) => counts,
                 None => (

@@ -1781,3 +1781,40 @@ fn a_far_clip_that_blacks_out_nearly_all_a_move_and_jittered_rays_are_all_named(
         );
     }
 }
+
+/// A program that writes its rows from the top and one row off (row r holds y = r + 1):
+/// no move alone agrees, and d01 so moved was told nothing (an offset alone agreed best,
+/// on 7 % of its pixels). The two moves are one cause, one loop that writes the rows:
+/// alone, beside a rule of the bytes and beside a mistake of the scene, drawn by the
+/// tiny tracer.
+#[test]
+fn an_image_upside_down_and_a_row_off_is_one_cause() {
+    let dir = folder("causes-upside-row");
+    let (shadows, tube, spheres) = (example("shadows"), example("tube"), example("spheres"));
+    let moved = |set: fn(&mut Mistakes)| {
+        let mut mistakes = rule(set);
+        (mistakes.upside_down, mistakes.row_offset) = (true, 1);
+        mistakes
+    };
+    let cases = vec![
+        (
+            "shadows",
+            &shadows,
+            moved(|_| {}),
+            vec!["upside-down,row-offset=1"],
+        ),
+        (
+            "spheres-round",
+            &spheres,
+            moved(|m| m.round_bytes = true),
+            vec!["upside-down,row-offset=1", "round-bytes"],
+        ),
+        (
+            "tube-no-shadows",
+            &tube,
+            moved(|m| m.no_shadows = true),
+            vec!["upside-down,row-offset=1", "no-shadows"],
+        ),
+    ];
+    diagnosed_as_drawn(&dir, cases);
+}
