@@ -151,23 +151,11 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
         let Some(ray) = self.camera.ray(x, y) else {
             return DVec3::ZERO;
         };
-        // 1. The camera ray's path is 0 long.
-        let total_dist = 0.0;
-        if total_dist > self.max_dist && !query.never_cut() {
-            rec.record(|| Event::CutOff { total_dist });
+        // The camera ray's path is 0 long.
+        let from = || From::Eye(self.objects.tile(x, y));
+        let Some(hit) = self.segment::<K>(&ray, (0, 0.0), from, query, rec) else {
             return DVec3::ZERO;
-        }
-        rec.record(|| Event::Segment {
-            depth: 0,
-            ray,
-            total_dist,
-        });
-        // 2. The closest hit.
-        let from = From::Eye(self.objects.tile(x, y));
-        let hit = self.objects.closest::<K, _, _>(&ray, from, query, rec);
-        rec.record(|| Event::Closest {
-            hit: hit.map(|h| (h.object, h.t)),
-        });
+        };
         self.ambient(&ray, hit, query, rec)
     }
 
@@ -396,29 +384,17 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
             for lane in 0..N {
                 let (path, rec) = (&mut paths[lane], &mut recs[lane]);
                 let Some(p) = path else { continue };
-                // 1. A path longer than MAX_DIST is black from here.
-                let total_dist = p.total_dist;
-                if total_dist > self.max_dist && !query.never_cut() {
-                    rec.record(|| Event::CutOff { total_dist });
-                    *path = None;
-                    continue;
-                }
-                let ray = p.ray;
-                rec.record(|| Event::Segment {
-                    depth,
-                    ray,
-                    total_dist,
-                });
-                // 2. The closest hit, skipping the object the ray leaves; nothing: black.
-                let from = match p.leaves {
+                // 1-2. Black where MAX_DIST ends the path, else the closest hit,
+                // skipping the object the ray leaves; nothing: black.
+                let leaves = p.leaves;
+                let from = || match leaves {
                     None => From::Eye(tile),
                     Some(object) => From::Surface(object),
                 };
-                let closest = self.objects.closest::<K, _, _>(&p.ray, from, query, rec);
-                rec.record(|| Event::Closest {
-                    hit: closest.map(|h| (h.object, h.t)),
-                });
-                let Some(Hit { object, t }) = closest else {
+                let segment = (depth, p.total_dist);
+                let Some(Some(Hit { object, t })) =
+                    self.segment::<K>(&p.ray, segment, from, query, rec)
+                else {
                     *path = None;
                     continue;
                 };
@@ -669,6 +645,35 @@ impl<'a, B: Rulebook> Tracer<'a, B> {
     #[inline(always)]
     fn reflects(&self, rules: ObjectRules, material: &Material) -> bool {
         material.specular != DVec3::ZERO && self.stage.reflects() && !rules.has(Kind::NoMirror)
+    }
+
+    /// Spec §4.2 steps 1 and 2 for the segment of a path along `ray`, the `depth`th, whose
+    /// path is `total_dist` long before it: `None` where MAX_DIST ends the path (black
+    /// from here), else the closest hit, skipping what `from` gives; each told to `rec`.
+    /// The loop and [`Tracer::ambient_pixel`] both take this step.
+    #[inline(always)]
+    fn segment<'t, K: Kernel>(
+        &self,
+        ray: &Ray,
+        (depth, total_dist): (usize, f64),
+        from: impl FnOnce() -> From<'t>,
+        query: impl Query,
+        rec: &mut impl Recorder,
+    ) -> Option<Option<Hit>> {
+        if total_dist > self.max_dist && !query.never_cut() {
+            rec.record(|| Event::CutOff { total_dist });
+            return None;
+        }
+        rec.record(|| Event::Segment {
+            depth,
+            ray: *ray,
+            total_dist,
+        });
+        let hit = self.objects.closest::<K, _, _>(ray, from(), query, rec);
+        rec.record(|| Event::Closest {
+            hit: hit.map(|h| (h.object, h.t)),
+        });
+        Some(hit)
     }
 
     /// The diagnostic image of `show` at the first hit along `ray`.
