@@ -434,16 +434,20 @@ pub(crate) fn with_mask(
     // The pixel's centre moves every ray a little, so its pixels agree under it only with
     // the student's rule of the bytes: paired with each rule from the start too (spec1
     // with both agreed on 516 pixels under pixel-centre alone and was told jitter).
-    let centre = (candidates.iter()).filter(|v| v.kind == Kind::PixelCentre);
-    let moved_bytes = (best_moved.iter().map(|&m| vec![m]))
-        .chain(two_moves.clone())
-        .chain(centre.map(|&c| vec![c]))
-        .flat_map(|moves| {
-            (candidates.iter().filter(rules)).map(move |&r| [&moves[..], &[r]].concat())
-        });
+    // And with the move: a row off whose rays go through the pixels' centres agrees
+    // worse than the image as it is under the move alone, so no candidate was found to
+    // pair (d06 so at 160x120 was told jitter and the offset).
+    let centre = (candidates.iter()).find(|v| v.kind == Kind::PixelCentre);
+    let moves = (best_moved.iter().map(|&m| vec![m])).chain(two_moves.clone());
+    let moved_centre =
+        (moves.clone()).flat_map(|moves| centre.map(|&c| [&moves[..], &[c]].concat()));
+    let moved_bytes = (moves.chain(centre.map(|&c| vec![c]))).flat_map(|moves| {
+        (candidates.iter().filter(rules)).map(move |&r| [&moves[..], &[r]].concat())
+    });
     let tried_first: Vec<Vec<Variant>> = (candidates.iter().map(|&v| vec![v]))
         .chain(two_moves)
         .chain(moved_bytes)
+        .chain(moved_centre)
         .collect();
     let first_try = |tried: Vec<Vec<Variant>>| -> Vec<(Vec<Variant>, f64)> {
         (tried.into_iter())

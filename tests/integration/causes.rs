@@ -1818,3 +1818,31 @@ fn an_image_upside_down_and_a_row_off_is_one_cause() {
     ];
     diagnosed_as_drawn(&dir, cases);
 }
+
+/// A row off whose rays go through the pixels' centres: under the offset alone fewer
+/// pixels agree than as the image is, so the first round found nothing to pair, and
+/// course scene d06 so at 160x120 was told jitter and the offset. The move is tried with
+/// the pixel's centre from the start, as with each rule of the bytes; drawn by the tiny
+/// tracer, and d06 by the program's variants.
+#[test]
+fn a_row_off_through_the_pixels_centres_is_told_both() {
+    let dir = folder("causes-row-centre");
+    let (shadows, spheres) = (example("shadows"), example("spheres"));
+    let both = rule(|m| (m.row_offset, m.pixel_centre) = (1, true));
+    let expected = vec!["row-offset=1", "pixel-centre"];
+    let cases = vec![
+        ("shadows", &shadows, both, expected.clone()),
+        ("spheres", &spheres, both, expected.clone()),
+    ];
+    diagnosed_as_drawn(&dir, cases);
+    let Some(d06) = course("d06") else { return };
+    let student = dir.join("d06.ppm");
+    render(
+        &d06,
+        SIZE,
+        &["--variant", "row-offset=1,pixel-centre"],
+        &student,
+    );
+    let (found, json) = causes(&d06, &student);
+    assert_eq!(found, expected, "{json:#}");
+}
