@@ -977,11 +977,12 @@ fn reached(
 
 /// Whether the reference upside down (`from`) is nearer the student's pixel than the
 /// reference as it is (the sum of the channels' differences), on the pixels `sample`, on
-/// at least twice as many as it is farther, and on a tenth of them at least
+/// at least five for every four it is farther on, and on a tenth of them at least
 /// ([`HIDDEN_FLIP`]): an image upside down whose colours a mistake changes everywhere
 /// still shows each object's pixels nearer their own colours than another object's (d05
 /// upside down with its light falling off with the square of the distance: 401 pixels
-/// nearer, 102 farther, of 506). An offset of a few rows or columns leaves most rays near
+/// nearer, 102 farther, of 506; examples/studio.txt so, whose mirrors and tiles show
+/// other objects' colours: 297 nearer, 210 farther). An offset of a few rows or columns leaves most rays near
 /// where they were, so that the mistake of the colours alone explains most pixels and the
 /// offset is found as its partner; offsets judged so were chosen wrong (a smooth image a
 /// row off is nearer the student's under the neighbouring offsets too: spec1 two rows
@@ -1006,7 +1007,7 @@ fn hidden_flip(
         nearer += usize::from(flipped < own);
         farther += usize::from(flipped > own);
     }
-    nearer >= 2 * farther && nearer * HIDDEN_FLIP >= sample.len()
+    nearer * 4 >= farther * 5 && nearer * HIDDEN_FLIP >= sample.len()
 }
 
 /// [`hidden_flip`]'s least share of the large sample: a pixel in this many.

@@ -391,8 +391,9 @@ fn an_image_upside_down_whose_every_lit_pixel_a_mistake_of_the_colours_changes_i
     // Upside down with the light falling off with the square of the distance: every pixel
     // is lit, so under either mistake alone next to no pixel agrees, and both scenes were
     // told nothing. The tiny tracer (spec §4-§5, not the program's code) draws the room;
-    // course scene d05 (finite planes, which the tiny tracer does not draw) is drawn by
-    // the program's own variants, where the course's material is beside the repository.
+    // examples/studio.txt and course scene d05 (mirrors, tiles and finite planes, which
+    // the tiny tracer does not draw) are drawn by the program's own variants, d05 where
+    // the course's material is beside the repository.
     let dir = folder("causes-upside-colours");
     let room = dir.join("room.txt");
     std::fs::write(&room, ROOM).unwrap();
@@ -402,14 +403,17 @@ fn an_image_upside_down_whose_every_lit_pixel_a_mistake_of_the_colours_changes_i
         ..Mistakes::default()
     };
     let mut cases = vec![("room", room.clone(), drawn(&dir, &room, mistakes))];
+    // Its mirrors and tiles show other objects' colours, so that the flip is nearer on
+    // fewer pixels (297 against 210 farther).
+    let studio = example("studio");
+    let student = dir.join("studio.ppm");
+    let flipped = ["--variant", "upside-down,square-falloff"];
+    render(&studio, SIZE, &flipped, &student);
+    let found = causes(&studio, &student);
+    cases.push(("studio", studio, found));
     if let Some(d05) = course("d05") {
         let student = dir.join("d05.ppm");
-        render(
-            &d05,
-            SIZE,
-            &["--variant", "upside-down,square-falloff"],
-            &student,
-        );
+        render(&d05, SIZE, &flipped, &student);
         let found = causes(&d05, &student);
         cases.push(("d05", d05, found));
     }
