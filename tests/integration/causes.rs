@@ -1823,6 +1823,47 @@ fn an_image_upside_down_and_a_row_off_is_one_cause() {
     diagnosed_as_drawn(&dir, cases);
 }
 
+/// An image upside down and a row off beside a mistake that changes nearly every lit
+/// colour: no move brings the reference's pixels near the student's, so the flip was
+/// found alone (hidden by the colours) or not at all, and what the offset leaves was read
+/// as jitter (course scene d03 so at 160x120: the flip, no-distance and jitter) or left
+/// out (d01: no-distance alone). The flip is tried with each offset beside the rest;
+/// drawn by the tiny tracer, and d01 and d03 by the program's variants.
+#[test]
+fn an_image_upside_down_and_a_row_off_is_found_beside_a_mistake_of_the_colours() {
+    let dir = folder("causes-upside-row-colours");
+    let (shadows, tube, spheres) = (example("shadows"), example("tube"), example("spheres"));
+    let moved = |row_offset: usize| {
+        let mut mistakes = rule(|m| m.no_distance = true);
+        (mistakes.upside_down, mistakes.row_offset) = (true, row_offset);
+        mistakes
+    };
+    let one = "upside-down,row-offset=1";
+    let cases = vec![
+        ("shadows", &shadows, moved(1), vec![one, "no-distance"]),
+        ("tube", &tube, moved(1), vec!["no-distance", one]),
+        (
+            "spheres",
+            &spheres,
+            moved(2),
+            vec!["no-distance", "upside-down,row-offset=2"],
+        ),
+    ];
+    diagnosed_as_drawn(&dir, cases);
+    for name in ["d01", "d03"] {
+        let Some(scene) = course(name) else { return };
+        for offset in ["1", "-2"] {
+            let student = dir.join(format!("{name}{offset}.ppm"));
+            let moved = format!("upside-down,row-offset={offset}");
+            let variants = format!("{moved},no-distance");
+            render(&scene, SIZE, &["--variant", &variants], &student);
+            let (mut found, json) = causes(&scene, &student);
+            found.sort();
+            assert_eq!(found, ["no-distance", moved.as_str()], "{name}: {json:#}");
+        }
+    }
+}
+
 /// A row off whose rays go through the pixels' centres: under the offset alone fewer
 /// pixels agree than as the image is, so the first round found nothing to pair, and
 /// course scene d06 so at 160x120 was told jitter and the offset. The move is tried with
