@@ -766,16 +766,19 @@ pub(crate) fn with_mask(
     // A pair found by a search below, with its estimate and the large sample's pixels it
     // fixes, kept where it agrees better than `than` (estimated, then exactly): listed
     // first, with a pixel that `kept` alone leaves (so that it shows the other), and each
-    // of its variants alone for the causes' order.
+    // of its causes alone ([`units`]) for the causes' order.
     type Estimated = ((f64, Vec<usize>), Vec<Variant>);
-    let adopt = |found: &mut Vec<Tried>, than: f64, ((estimated, fixed), pair): Estimated, kept| {
+    let adopt = |found: &mut Vec<Tried>,
+                 than: f64,
+                 ((estimated, fixed), pair): Estimated,
+                 kept: &[Variant]| {
         if estimated <= than {
             return;
         }
         let Some((agreement, counts)) = exact(&pair).filter(|(a, _)| *a > than) else {
             return;
         };
-        let alone_fixed = estimate(&[kept]).map_or(Vec::new(), |(_, fixed)| fixed);
+        let alone_fixed = estimate(kept).map_or(Vec::new(), |(_, fixed)| fixed);
         let pixel = pixel_of(&pair, &fixed, &alone_fixed);
         let tried = Tried {
             variants: pair.clone(),
@@ -792,28 +795,33 @@ pub(crate) fn with_mask(
         }
     };
     let continuous = |v: &&Variant| CONTINUOUS.contains(&v.kind) && v.line.is_none();
-    if let Some(m) = best_moved
+    // The move: the image upside down and an offset where that pair beat every move alone
+    // (spec1 so, clipped at 10, was told far-clip=5.1: the clip estimated where the
+    // offset leaves its edge; d06 so, a reader that stopped at line 8).
+    let unit = two_moves.clone().or(best_moved.map(|m| vec![m]));
+    if let Some(m) = unit
         && let Some(top) = found.first().filter(|t| t.agreement < 1.0).cloned()
         && let Some(value) = match top.variants.iter().find(continuous) {
             Some(&value) => Some(Some(value)),
-            None => (top.variants[0] != m && top.agreement < EXPLAINED).then_some(None),
+            None => (!top.variants.starts_with(&m) && top.agreement < EXPLAINED).then_some(None),
         }
     {
         // The move's own best partner, looked for on the pixels it leaves: the parameter
         // may stand for another mistake (a far object hidden, as a far clip).
-        let partners = (candidates.iter().copied()).filter(|p| p.id() != m.id());
-        let by_partner = (scorer.left(&[m]))
+        let partners = (candidates.iter().copied()).filter(|p| m.iter().all(|m| p.id() != m.id()));
+        let with = |v: Variant| [&m[..], &[v]].concat();
+        let by_partner = (scorer.left(&m))
             .and_then(|left| {
                 (scorer
-                    .best_partners(&[m], partners.collect(), &left)
+                    .best_partners(&m, partners.collect(), &left)
                     .into_iter())
                 .next()
             })
-            .map(|(partner, estimated)| (estimated, vec![m, partner]));
+            .map(|(partner, estimated)| (estimated, with(partner)));
         // And, unless that explains the image, the parameter under the move: its first
         // values and the one found alone, then the round values near the best of those.
         let explained = by_partner.as_ref().is_some_and(|(e, _)| e.0 >= EXPLAINED);
-        let under = |v: Variant| vec![m, v];
+        let under = with;
         let by_value = |value: Variant| {
             let kind = value.kind;
             let firsts = (other_values().into_iter())
@@ -823,7 +831,7 @@ pub(crate) fn with_mask(
                 .filter_map(|v| Some((under(v), estimate_on(0, &under(v))?.0)))
                 .collect();
             let tried: Vec<(f64, f64)> = (round.iter())
-                .filter_map(|(v, agreement)| Some((v[1].value?, *agreement)))
+                .filter_map(|(v, agreement)| Some((v.last()?.value?, *agreement)))
                 .collect();
             let values = tried.iter().map(|t| t.0).collect();
             round.extend(
@@ -842,7 +850,7 @@ pub(crate) fn with_mask(
         let best = (by_value.into_iter().chain(by_partner))
             .max_by(|a, b| a.0.0.total_cmp(&b.0.0).then(std::cmp::Ordering::Greater));
         if let Some(best) = best {
-            adopt(&mut found, top.agreement, best, m);
+            adopt(&mut found, top.agreement, best, &m);
         }
     }
     // A reader that stopped before its lights changes nearly every pixel, and a move of
@@ -876,7 +884,7 @@ pub(crate) fn with_mask(
         let than = found.first().map_or(before, |t| t.agreement);
         if let Some(best) = best_pair(pairs) {
             let stop = best.1[1];
-            adopt(&mut found, than, best, stop);
+            adopt(&mut found, than, best, &[stop]);
         }
     }
     // A reader's stop found beside another mistake is the line where the two together
@@ -900,7 +908,7 @@ pub(crate) fn with_mask(
             .collect();
         if let Some(best) = best_pair(pairs) {
             let partner = top.variants[1 - k];
-            adopt(&mut found, top.agreement, best, partner);
+            adopt(&mut found, top.agreement, best, &[partner]);
         }
     }
     // A continuous parameter found beside another mistake was estimated on the samples
@@ -926,7 +934,7 @@ pub(crate) fn with_mask(
         if let Some((value, estimated)) = best {
             let mut pair = top.variants.clone();
             pair[k] = value;
-            adopt(&mut found, top.agreement, (estimated, pair), other);
+            adopt(&mut found, top.agreement, (estimated, pair), &[other]);
         }
     }
     // An image upside down found beside another mistake (hidden by it, [`hidden_flip`]) may
@@ -957,7 +965,7 @@ pub(crate) fn with_mask(
             .filter(|pair| moves != pair)
             .map(|pair| [&pair[..], &rest].concat());
         if let Some(best) = best_pair(moved.collect()) {
-            adopt(&mut found, top.agreement, best, rest[0]);
+            adopt(&mut found, top.agreement, best, &rest[..1]);
         }
     }
     // The counts of the one that went without (MAX_DIST's), for the causes.

@@ -1850,17 +1850,46 @@ fn an_image_upside_down_and_a_row_off_is_found_beside_a_mistake_of_the_colours()
         ),
     ];
     diagnosed_as_drawn(&dir, cases);
-    for name in ["d01", "d03"] {
-        let Some(scene) = course(name) else { return };
-        for offset in ["1", "-2"] {
-            let student = dir.join(format!("{name}{offset}.ppm"));
-            let moved = format!("upside-down,row-offset={offset}");
-            let variants = format!("{moved},no-distance");
-            render(&scene, SIZE, &["--variant", &variants], &student);
-            let (mut found, json) = causes(&scene, &student);
-            found.sort();
-            assert_eq!(found, ["no-distance", moved.as_str()], "{name}: {json:#}");
-        }
+    for (name, offset) in [("d01", 1), ("d01", -2), ("d03", 1), ("d03", -2)] {
+        told_upside_down_and_a_row_off(&dir, name, offset, "no-distance");
+    }
+}
+
+/// Course scene `name` rendered by the program upside down, `offset` rows off and with
+/// `mistake`: the diagnosis states the two moves as one cause and the mistake, and
+/// nothing else. Nothing where ../shared is absent.
+fn told_upside_down_and_a_row_off(dir: &Path, name: &str, offset: i32, mistake: &str) {
+    let Some(scene) = course(name) else { return };
+    let student = dir.join(format!("{name}{offset}.ppm"));
+    let moved = format!("upside-down,row-offset={offset}");
+    let variants = format!("{moved},{mistake}");
+    render(&scene, SIZE, &["--variant", &variants], &student);
+    let (mut found, json) = causes(&scene, &student);
+    found.sort();
+    let mut expected = [mistake, moved.as_str()];
+    expected.sort();
+    assert_eq!(found, expected, "{name}: {json:#}");
+}
+
+/// An image upside down and a row off whose far objects are clipped: the far clip
+/// alone was estimated where the offset leaves its edge (course scene spec1 so at
+/// 160x120 was told far-clip=5.1; d06 two rows back, a reader that stopped at line 8).
+/// The clip is estimated again under the flip and the offset that the moves' search
+/// found, as under a move alone; drawn by the tiny tracer, and spec1 and d06 by the
+/// program's variants.
+#[test]
+fn an_image_upside_down_and_a_row_off_is_found_beside_a_far_clip() {
+    let dir = folder("causes-upside-row-clip");
+    let (shadows, tube) = (example("shadows"), example("tube"));
+    let moved = rule(|m| (m.upside_down, m.row_offset, m.far_clip) = (true, 1, Some(10.0)));
+    let one = "upside-down,row-offset=1";
+    let cases = vec![
+        ("shadows", &shadows, moved, vec![one, "far-clip=10"]),
+        ("tube", &tube, moved, vec![one, "far-clip=10"]),
+    ];
+    diagnosed_as_drawn(&dir, cases);
+    for (name, offset) in [("spec1", 1), ("d06", -2)] {
+        told_upside_down_and_a_row_off(&dir, name, offset, "far-clip=10");
     }
 }
 
