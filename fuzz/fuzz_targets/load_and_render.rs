@@ -18,7 +18,10 @@ fuzz_target!(|data: &[u8]| {
     for chunks in [2, 7] {
         let chunked = legacy_rt::scene::load_in_chunks(&text, &files, 2, chunks);
         match (&loaded, &chunked) {
-            (Ok(a), Ok(b)) => assert!(a == b),
+            // The same scene, field by field as written out: a derived `==` fails on a
+            // NaN its precomputed terms may hold (a quadric's value at its anchor, where a
+            // coefficient of 1e308 overflows), which both readings hold alike.
+            (Ok(a), Ok(b)) => assert_eq!(format!("{a:?}"), format!("{b:?}")),
             (Err(a), Err(b)) => assert_eq!(a.to_string(), b.to_string()),
             _ => panic!("read in {chunks} chunks: {chunked:?}, from the start: {loaded:?}"),
         }
