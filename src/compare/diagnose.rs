@@ -438,7 +438,11 @@ pub(crate) fn with_mask(
     // the student's rule of the bytes: paired with each rule from the start too (spec1
     // with both agreed on 516 pixels under pixel-centre alone and was told jitter).
     let centre = (candidates.iter()).find(|v| v.kind == Kind::PixelCentre);
-    let moves = (best_moved.iter().map(|&m| vec![m])).chain(two_moves.clone());
+    // The moves paired so: the best alone, and the flip with an offset.
+    let move_units: Vec<Vec<Variant>> = (best_moved.iter().map(|&m| vec![m]))
+        .chain(two_moves.clone())
+        .collect();
+    let moves = move_units.iter().cloned();
     let moved_bytes = (moves.chain(centre.map(|&c| vec![c]))).flat_map(|moves| {
         (candidates.iter().filter(rules)).map(move |&r| [&moves[..], &[r]].concat())
     });
@@ -459,8 +463,7 @@ pub(crate) fn with_mask(
     // the offset alone, so no candidate was found to pair (d06 so at 160x120 was told
     // jitter and the offset).
     let tried = |moves: &Vec<Variant>| first_round.iter().any(|(v, _)| v == moves);
-    let moved_centre: Vec<Vec<Variant>> = (best_moved.iter().map(|&m| vec![m]))
-        .chain(two_moves.clone())
+    let moved_centre: Vec<Vec<Variant>> = (move_units.iter())
         .filter(|moves| !tried(moves))
         .flat_map(|moves| centre.map(|&c| [&moves[..], &[c]].concat()))
         .collect();
@@ -1029,12 +1032,12 @@ fn reached(
 /// still shows each object's pixels nearer their own colours than another object's (d05
 /// upside down with its light falling off with the square of the distance: 401 pixels
 /// nearer, 102 farther, of 506; examples/studio.txt so, whose mirrors and tiles show
-/// other objects' colours: 297 nearer, 210 farther). An offset of a few rows or columns leaves most rays near
-/// where they were, so that the mistake of the colours alone explains most pixels and the
-/// offset is found as its partner; offsets judged so were chosen wrong (a smooth image a
-/// row off is nearer the student's under the neighbouring offsets too: spec1 two rows
-/// off without the division by the distance was paired with one row off and told
-/// nothing).
+/// other objects' colours: 297 nearer, 210 farther). An offset of a few rows or columns
+/// leaves most rays near where they were, so that the mistake of the colours alone
+/// explains most pixels and the offset is found as its partner; offsets judged so were
+/// chosen wrong (a smooth image a row off is nearer the student's under the neighbouring
+/// offsets too: spec1 two rows off without the division by the distance was paired with
+/// one row off and told nothing).
 fn hidden_flip(
     reference: &Image,
     student: &Image,
