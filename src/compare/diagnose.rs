@@ -50,6 +50,10 @@ const SAMPLE: [usize; 2] = [128, 512];
 /// How many candidates go on from the small sample to the large one.
 const SHORTLIST: usize = 8;
 
+/// How many of the candidates estimated alike best are scored exactly, where the first
+/// makes agreeing pixels differ.
+const TIED: usize = 6;
+
 /// How many of the partners estimated best (and alike) on the pixels a first leaves are
 /// scored exactly, in turn, until one does better than the first alone.
 const RANKED: usize = 3;
@@ -527,7 +531,20 @@ pub(crate) fn with_mask(
             .filter(|v| of_kind(v))
             .filter_map(|v| v.value)
             .collect();
-        let near = values_near(kind, &tried, values);
+        let mut near = values_near(kind, &tried, values);
+        // A shadow epsilon none of whose first values does better than the image as it
+        // is (0.4 in examples/shadows.txt at 160x120 lights the 35 pixels whose casters
+        // lie within 0.4 of the surface, and 0.1 none of them): estimated from how far
+        // the sampled pixels' blockers lie.
+        let epsilon = kind == Kind::ShadowEpsilon && candidates.iter().any(of_kind);
+        if epsilon && tried.is_empty() {
+            near.extend(estimate_epsilon(
+                scene,
+                options,
+                &samples[1],
+                (differing, agreeing),
+            ));
+        }
         try_near(near, &mut first_round, &mut candidates);
     }
     shortlist(&mut first_round);
@@ -595,8 +612,33 @@ pub(crate) fn with_mask(
         few && tried.variants.iter().all(whole) && reach(&tried.variants).is_none()
     };
     let mut found: Vec<Tried> = Vec::new();
-    if let Some((tried, _)) = estimated.into_iter().find(|t| !hopeless(t))
-        && let Some((agreement, counts)) = exact(&tried.variants)
+    // Of those that tie with the best estimate, the first scored exactly, and where it
+    // moves no pixel and makes agreeing pixels differ that the sample does not hold, the
+    // next few too (a move has its own searches below): the best of them is kept, the
+    // first of equals (examples/spheres.txt drawn with a shadow
+    // epsilon of 2 was told no-shadows, which lights its 21 pixels and 3 more; the epsilon,
+    // tied with it on the samples, lights the 21 alone).
+    let mut ranked = (estimated.into_iter()).filter(|t| !hopeless(t));
+    let first = ranked.next().and_then(|(tried, _)| {
+        let (agreement, counts) = exact(&tried.variants)?;
+        Some((tried, agreement, counts))
+    });
+    let first = first.map(|(mut best, mut agreement, mut counts)| {
+        let moves = best.variants.iter().any(|v| SHIFTS.contains(&v.kind));
+        if counts.broken > 0 && !moves {
+            let estimated = best.agreement;
+            let tied = (ranked.take_while(|t| t.0.agreement >= estimated)).take(TIED - 1);
+            for (tried, _) in tied {
+                if let Some((a, c)) = exact(&tried.variants)
+                    && a > agreement
+                {
+                    (best, agreement, counts) = (tried, a, c);
+                }
+            }
+        }
+        (best, agreement, counts)
+    });
+    if let Some((tried, agreement, counts)) = first
         && agreement > before
     {
         let pair = tried.variants.clone();
@@ -1664,7 +1706,13 @@ fn round_values_between(low: f64, high: f64) -> Vec<f64> {
             false => k * step_in_units * scale,
         };
         let mut k = (if divide { low * scale } else { low / scale } / step_in_units).floor();
-        while out.len() < ROUND_VALUES {
+        // high - low is under 10 of the largest step and under 100 of the smallest, so
+        // some hundred steps reach `high`; the bound holds besides where `low` is so large
+        // against the step that k + 1 is k (a range one ulp wide).
+        for _ in 0..STEPS_BETWEEN {
+            if out.len() >= ROUND_VALUES {
+                break;
+            }
             let value = at(k);
             if value >= high {
                 break;
@@ -1706,6 +1754,9 @@ fn values_near(kind: Kind, tried: &[(f64, f64)], mut values: Vec<f64>) -> Vec<Va
         })
         .collect()
 }
+
+/// How many steps [`round_values_between`] takes at most, of each size.
+const STEPS_BETWEEN: usize = 128;
 
 /// How many round values a continuous parameter is tried at between two of its first.
 const ROUND_VALUES: usize = 32;
@@ -1929,6 +1980,50 @@ pub fn estimate_max_dist(
     Some((d, range, best / student.pixels.len().max(1) as f64, pixel))
 }
 
+/// The shadow epsilon (spec §7.5) to try where none of the first did better than the
+/// image as it is: the roundest value of the range of ε that would make the most of
+/// `sample`'s pixels agree (its differing ones, then from `split` its agreeing ones;
+/// `counts` of each in the image), as far as the farthest blockers of their shadow rays
+/// tell. A differing pixel is taken to agree, and an agreeing one to differ, from the ε
+/// at which its first shadow ray is blocked no more; the render of the value says
+/// whether it does. None where no ε does better than none, or the range holds no round
+/// value.
+fn estimate_epsilon(
+    scene: &Scene,
+    options: &Options,
+    (sample, split): &(Vec<usize>, usize),
+    (differing, agreeing): (usize, usize),
+) -> Option<Variant> {
+    let at = super::unblocked_at(scene, options, sample);
+    let mut changes: Vec<super::PathChange> = (at.iter().enumerate())
+        .filter_map(|(i, t)| {
+            Some(super::PathChange {
+                start: (*t)?,
+                pixel: i as u32,
+                agrees: i < *split,
+            })
+        })
+        .collect();
+    changes.sort_by(|a, b| a.start.total_cmp(&b.start).then(a.pixel.cmp(&b.pixel)));
+    let state: Vec<bool> = (0..sample.len()).map(|i| i >= *split).collect();
+    let share = |count: usize, of: usize| count as f64 / of.max(1) as f64;
+    let weights = [
+        share(differing, *split),
+        share(agreeing, sample.len() - split),
+    ];
+    let weight = |i: usize| weights[usize::from(i >= *split)];
+    let (epsilon, [low, high], _) = best_max_dist(&state, &changes, weight, 0.0)?;
+    // A student writes a round ε: a range too narrow to hold one is a coincidence of a
+    // few pixels.
+    if roundest(low, high).1 == 0.0 {
+        return None;
+    }
+    Some(Variant {
+        value: Some(epsilon),
+        ..Variant::of(Kind::ShadowEpsilon)
+    })
+}
+
 /// The options [`estimate_max_dist`] renders with: MAX_DIST at [`PROBE_LIMIT`] or more.
 fn probe(options: &Options) -> Options {
     Options {
@@ -1940,7 +2035,8 @@ fn probe(options: &Options) -> Options {
 /// Of the pixels whose bytes agree under the smallest MAX_DIST (`state`) and change as D
 /// grows (`changes`, by D), each counted with its `weight`: the roundest D that agrees
 /// best, its range, and that agreement (the weights' sum); `None` where none agrees
-/// better than the `current` D.
+/// better than the `current` D. The same sweep serves a shadow epsilon, whose changes
+/// lie where ε passes a pixel's blockers ([`estimate_epsilon`]).
 fn best_max_dist(
     state: &[bool],
     changes: &[super::PathChange],
@@ -1995,17 +2091,30 @@ fn best_max_dist(
 /// of `low` (or at most `high` when `low` is 0) and has a multiple in the range.
 pub fn roundest(low: f64, high: f64) -> (f64, f64) {
     let scale = if low > 0.0 { low / 2.0 } else { high };
-    let mut step = 10f64.powi(scale.log10().floor() as i32 + 1);
+    let mut exponent = scale.log10().floor() as i32 + 1;
     for _ in 0..40 {
-        for s in [step, step / 2.0] {
+        for half in [false, true] {
+            // A step below 1 as the division by a whole number it is (0.1 as 1 / 10), so
+            // that its multiples are the decimals written (0.6, not 0.6000000000000001).
+            let (whole, per) = match exponent < 0 {
+                true => (1.0, 10f64.powi(-exponent)),
+                false => (10f64.powi(exponent), 1.0),
+            };
+            let (whole, per) = match half {
+                true if exponent > 0 => (whole / 2.0, per),
+                true => (whole, per * 2.0),
+                false => (whole, per),
+            };
+            let s = whole / per;
             if s <= scale {
-                let multiple = (low / s).ceil().max(1.0) * s;
+                let k = (low * per / whole).ceil().max(1.0);
+                let multiple = k * whole / per;
                 if multiple < high {
                     return (multiple, s);
                 }
             }
         }
-        step /= 10.0;
+        exponent -= 1;
     }
     (if low > 0.0 { low } else { high / 2.0 }, 0.0)
 }
@@ -2248,5 +2357,9 @@ mod tests {
         assert_eq!(roundest(33.1, 33.9), (33.5, 0.5));
         assert_eq!(roundest(0.0, 7.3), (5.0, 5.0));
         assert_eq!(roundest(0.0, 14.05), (10.0, 10.0));
+        // Steps below 1 give the decimals as written.
+        assert_eq!(roundest(0.55, 0.65), (0.6, 0.1));
+        assert_eq!(roundest(0.271, 0.29), (0.28, 0.01));
+        assert_eq!(roundest(0.00711, 0.0074), (0.0072, 0.0001));
     }
 }

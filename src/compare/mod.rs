@@ -21,7 +21,8 @@ pub use reach::{Paths, Reach};
 pub(crate) use reach::{Steps, packed};
 pub use reference::{FirstHit, Fragility, Mark, render_with_margins, render_with_paths};
 pub use retrace::{
-    Involved, PathChange, involved, path_agreement, path_agreement_at, render_forced, render_pixels,
+    Involved, PathChange, involved, path_agreement, path_agreement_at, render_forced,
+    render_pixels, unblocked_at,
 };
 
 pub use diagnose::{

@@ -7,7 +7,7 @@ use crate::render::record::{Event, LightStep, Recorder};
 use crate::render::tiles;
 use crate::render::tracer::Tracer;
 use crate::render::variant::{Rulebook, Rules};
-use crate::render::{Forced, Noted, Options, Override, Plain, Setup, each_pixel};
+use crate::render::{Forced, Near, Noted, Options, Override, Plain, Setup, each_pixel};
 use crate::scene::Scene;
 use crate::shapes::kernel::{Kernel, with_kernel};
 use glam::DVec3;
@@ -258,6 +258,49 @@ pub fn involved(scene: &Scene, options: &Options, indices: &[usize]) -> Vec<Invo
         let mut path = Involved::default();
         with_kernel!(options.kernel, K => tracer.pixel::<K>(x, y, Plain, &mut path));
         path
+    })
+}
+
+/// For each of the pixels `indices` (output order), under `options`, the least
+/// shadow epsilon ε (spec §7.5: a ray leaving a surface counts only the hits past ε) at
+/// which one of its blocked shadow rays is blocked no more: the farthest blocker of the
+/// ray whose farthest is nearest. `None` where no shadow ray of the pixel is blocked.
+/// The path is the one of `options`: what ε would change on mirror rays, and on the
+/// object a ray leaves, is not counted; the diagnosis renders what this suggests.
+pub fn unblocked_at(scene: &Scene, options: &Options, indices: &[usize]) -> Vec<Option<f64>> {
+    /// The pixel's answer so far, and the open shadow ray's distance to its light and
+    /// farthest blocker.
+    #[derive(Default)]
+    struct Blockers {
+        least: Option<f64>,
+        dist: f64,
+        open: Option<f64>,
+    }
+    impl Recorder for Blockers {
+        fn record(&mut self, event: impl FnOnce() -> Event) {
+            match event() {
+                Event::Light(LightStep::Towards { dist, .. }) => self.dist = dist,
+                Event::Light(LightStep::ShadowRay { .. }) => self.open = Some(0.0),
+                Event::Tested { t: Some(t), .. } if t > 0.0 && t < self.dist => {
+                    if let Some(farthest) = self.open.as_mut() {
+                        *farthest = farthest.max(t);
+                    }
+                }
+                Event::Light(LightStep::Blocked { blocker }) => {
+                    let farthest = self.open.take();
+                    if let Some(farthest) = farthest.filter(|_| blocker.is_some()) {
+                        self.least = Some(self.least.map_or(farthest, |l| l.min(farthest)));
+                    }
+                }
+                _ => {}
+            }
+        }
+    }
+    // Every blocker tested, not only the first ([`Near`]'s shadow queries).
+    at_pixels(scene, options, indices, |_, tracer, x, y| {
+        let mut path = Blockers::default();
+        with_kernel!(options.kernel, K => tracer.pixel::<K>(x, y, Near(0.0), &mut path));
+        path.least
     })
 }
 

@@ -1948,3 +1948,40 @@ fn jittered_rays_and_a_mistake_of_few_pixels_are_both_named() {
     ];
     diagnosed_as_drawn(&dir, cases);
 }
+
+/// A shadow epsilon alone, drawn by the tiny tracer at values none of the first tried
+/// brackets: in examples/shadows.txt 0.1 and below change nothing and 1 changes more than
+/// 0.4 or 0.6 do, so the value is estimated from how far the blockers lie. In
+/// examples/spheres.txt 2 lights 21 pixels, as no-shadows does with 3 more: the two tie on
+/// the samples.
+#[test]
+fn a_shadow_epsilon_alone_is_found_at_its_value_from_the_blockers() {
+    let dir = folder("causes-epsilon-alone");
+    let cases = [
+        ("shadows", 0.4),
+        ("shadows", 0.6),
+        ("tube", 0.4),
+        ("spheres", 2.0),
+    ];
+    let cases = (cases.into_iter())
+        .map(|(name, epsilon)| {
+            let id = format!("shadow-epsilon={epsilon}");
+            let mistakes = Mistakes {
+                shadow_epsilon: Some(epsilon),
+                ..Mistakes::default()
+            };
+            (name, epsilon, mistakes, id)
+        })
+        .collect::<Vec<_>>();
+    let mut failures = Vec::new();
+    for (name, epsilon, mistakes, id) in &cases {
+        let (found, json) = drawn(&dir, &example(name), *mistakes);
+        if found != [id.as_str()] {
+            failures.push(format!(
+                "{name} {epsilon}: {found:?}: {}",
+                json["diagnosis"]
+            ));
+        }
+    }
+    assert!(failures.is_empty(), "{failures:#?}");
+}
