@@ -54,6 +54,10 @@ const SHORTLIST: usize = 8;
 /// makes agreeing pixels differ.
 const TIED: usize = 6;
 
+/// How many candidates after the best lend their mistakes to the image upside down and
+/// an offset.
+const RESTS: usize = 2;
+
 /// How many of the partners estimated best (and alike) on the pixels a first leaves are
 /// scored exactly, in turn, until one does better than the first alone.
 const RANKED: usize = 3;
@@ -1003,14 +1007,36 @@ pub(crate) fn with_mask(
     if let Some(top) = found.first().filter(refined).cloned()
         && let Some(flip) = flip
     {
-        let (moves, rest): (Vec<Variant>, Vec<Variant>) =
-            (top.variants.iter()).partition(|v| SHIFTS.contains(&v.kind));
+        let split = |t: &Tried| -> (Vec<Variant>, Vec<Variant>) {
+            (t.variants.iter()).partition(|v| SHIFTS.contains(&v.kind))
+        };
+        let (moves, rest) = split(&top);
+        // The rest of the next candidates too: the best may pair an offset with another
+        // mistake by chance (examples/spheres.txt upside down, a row off and lit with the
+        // square of the distance was best explained as a row back with a reader stopped
+        // at line 11, 272 of 895; the flip with square-falloff came next).
+        let mut rests = vec![rest];
+        for next in found.iter().skip(1).take(RESTS) {
+            let (_, rest) = split(next);
+            if !rest.is_empty() && !rests.contains(&rest) {
+                rests.push(rest);
+            }
+        }
         let offsets = (shifts.iter()).filter(|v| v.kind != Kind::UpsideDown);
-        let moved = (offsets.map(|&offset| [flip, offset]))
-            .filter(|pair| moves != pair)
-            .map(|pair| [&pair[..], &rest].concat());
-        if let Some(best) = best_pair(moved.collect()) {
-            adopt(&mut found, top.agreement, best, &rest[..1]);
+        let moved: Vec<Vec<Variant>> = (offsets.map(|&offset| [flip, offset]))
+            .flat_map(|pair| {
+                let own = moves == pair;
+                (rests.iter().enumerate())
+                    .filter(move |&(k, _)| k > 0 || !own)
+                    .map(move |(_, rest)| [&pair[..], rest].concat())
+            })
+            .collect();
+        if let Some(best) = best_pair(moved) {
+            let kept: Vec<Variant> = (best.1.iter())
+                .filter(|v| !SHIFTS.contains(&v.kind))
+                .copied()
+                .collect();
+            adopt(&mut found, top.agreement, best, &kept[..1]);
         }
     }
     // The counts of the one that went without (MAX_DIST's), for the causes.

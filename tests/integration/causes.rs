@@ -1985,3 +1985,24 @@ fn a_shadow_epsilon_alone_is_found_at_its_value_from_the_blockers() {
     }
     assert!(failures.is_empty(), "{failures:#?}");
 }
+
+/// An image upside down and a row off whose light falls off with the square of the
+/// distance, on a scene nearly symmetric top to bottom: the flip and the offset explain a
+/// third of the differing pixels, the falloff alone a twentieth, and the best candidate
+/// was an offset beside a reader stopped at a record (examples/spheres.txt so at 160x120:
+/// a row back, stopped at line 11, 272 of 895, and nothing stated). The flip and each
+/// offset are tried beside the mistakes of the next candidates too. Drawn by the tiny
+/// tracer.
+#[test]
+fn an_image_upside_down_and_a_row_off_is_found_beside_a_square_falloff() {
+    let dir = folder("causes-upside-row-square");
+    let mut mistakes = rule(|m| m.square_falloff = true);
+    (mistakes.upside_down, mistakes.row_offset) = (true, 1);
+    let (spheres, tiled) = (example("spheres"), example("tiled_planes"));
+    let one = "upside-down,row-offset=1";
+    let cases = vec![
+        ("spheres", &spheres, mistakes, vec![one, "square-falloff"]),
+        ("tiled", &tiled, mistakes, vec!["square-falloff", one]),
+    ];
+    diagnosed_as_drawn(&dir, cases);
+}
