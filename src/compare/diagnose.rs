@@ -2033,7 +2033,7 @@ fn estimate_epsilon(
             })
         })
         .collect();
-    changes.sort_by(|a, b| a.start.total_cmp(&b.start).then(a.pixel.cmp(&b.pixel)));
+    super::by_distance(&mut changes);
     let state: Vec<bool> = (0..sample.len()).map(|i| i >= *split).collect();
     let share = |count: usize, of: usize| count as f64 / of.max(1) as f64;
     let weights = [

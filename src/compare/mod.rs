@@ -20,6 +20,7 @@ pub mod text;
 pub use reach::{Paths, Reach};
 pub(crate) use reach::{Steps, packed};
 pub use reference::{FirstHit, Fragility, Mark, render_with_margins, render_with_paths};
+pub(crate) use retrace::by_distance;
 pub use retrace::{
     Involved, PathChange, involved, path_agreement, path_agreement_at, render_forced,
     render_pixels, unblocked_at,

@@ -369,7 +369,7 @@ pub fn path_agreement_at(
 
 /// Sorts path changes by D, then by pixel; a pixel's own changes were pushed in path
 /// order and the sort is stable, so they stay in that order.
-fn by_distance(changes: &mut [PathChange]) {
+pub(crate) fn by_distance(changes: &mut [PathChange]) {
     changes.sort_by(|a, b| a.start.total_cmp(&b.start).then(a.pixel.cmp(&b.pixel)));
 }
 
