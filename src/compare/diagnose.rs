@@ -631,7 +631,14 @@ pub(crate) fn with_mask(
         let moves = best.variants.iter().any(|v| SHIFTS.contains(&v.kind));
         if counts.broken > 0 && !moves {
             let estimated = best.agreement;
-            let tied = (ranked.take_while(|t| t.0.agreement >= estimated)).take(TIED - 1);
+            // Other values of the best's own kinds are not other explanations: the
+            // samples cannot part a far clip of 6 from one of 9 (d05 a row off and
+            // clipped at 10), and the values are searched for below.
+            let kinds: Vec<Kind> = best.variants.iter().map(|v| v.kind).collect();
+            let other = |t: &(Tried, usize)| t.0.variants.iter().all(|v| !kinds.contains(&v.kind));
+            let tied = (ranked.take_while(|t| t.0.agreement >= estimated))
+                .filter(other)
+                .take(TIED - 1);
             for (tried, _) in tied {
                 if let Some((a, c)) = exact(&tried.variants)
                     && a > agreement
@@ -1015,8 +1022,7 @@ pub(crate) fn with_mask(
         // offset with another mistake by chance (examples/spheres.txt upside down, a row
         // off and lit with the square of the distance was best explained as a row back
         // with a reader stopped at line 11, 272 of 895; the flip with square-falloff came
-        // next). A best that is a cause leaves no room for the next ones' (and trying
-        // them cost course scenes d05 and d06 a row off and clipped a fifth more).
+        // next). A best that is a cause leaves no room for the next ones'.
         let weak = (top.counts).is_none_or(|c| !supported(c.fixed, differing, c.broken));
         let mut rests = vec![rest];
         for next in found.iter().skip(1).take(if weak { RESTS } else { 0 }) {
