@@ -389,10 +389,10 @@ pub(crate) fn with_mask(
             from(i).is_some_and(close)
         };
         let (sample, split) = &samples[1];
+        let weight = sample_weight((sample, *split), (differing, agreeing));
         let (sample_d, sample_a) = sample.split_at(*split);
-        let weight = |n: usize, of: usize| n as f64 / of.max(1) as f64;
-        sample_d.iter().filter(|i| close(i)).count() as f64 * weight(differing, sample_d.len())
-            + sample_a.iter().filter(|i| close(i)).count() as f64 * weight(agreeing, sample_a.len())
+        let count = |part: &[usize]| part.iter().filter(|i| close(i)).count() as f64;
+        count(sample_d) * weight(0) + count(sample_a) * weight(*split)
     };
     let as_it_is = within_one(&|i| Some(i));
     let shifts: Vec<Variant> = (candidates.iter())
@@ -677,12 +677,7 @@ pub(crate) fn with_mask(
         let (sample, split) = &samples[1];
         let (state, changes) =
             super::path_agreement_at(scene, &probe(options), sample, |k, b| agrees(sample[k], b));
-        let share = |n: usize, of: usize| n as f64 / of.max(1) as f64;
-        let (d_weight, a_weight) = (
-            share(differing, *split),
-            share(agreeing, sample.len() - split),
-        );
-        let weight = |k: usize| if k < *split { d_weight } else { a_weight };
+        let weight = sample_weight((sample, *split), (differing, agreeing));
         best_max_dist(&state, &changes, weight, options.max_dist)
             .is_some_and(|(_, _, agreeing)| agreeing / total > best + (1.0 - best) * WORTH)
     };
@@ -2076,12 +2071,7 @@ fn estimate_epsilon(
         .collect();
     super::by_distance(&mut changes);
     let state: Vec<bool> = (0..sample.len()).map(|i| i >= *split).collect();
-    let share = |count: usize, of: usize| count as f64 / of.max(1) as f64;
-    let weights = [
-        share(differing, *split),
-        share(agreeing, sample.len() - split),
-    ];
-    let weight = |i: usize| weights[usize::from(i >= *split)];
+    let weight = sample_weight((sample, *split), (differing, agreeing));
     let (epsilon, [low, high], _) = best_max_dist(&state, &changes, weight, 0.0)?;
     // A student writes a round ε: a range too narrow to hold one is a coincidence of a
     // few pixels.
@@ -2092,6 +2082,20 @@ fn estimate_epsilon(
         value: Some(epsilon),
         ..Variant::of(Kind::ShadowEpsilon)
     })
+}
+
+/// The weight of the k-th pixel of a sample whose first `split` pixels differ: the
+/// share of the image's pixels of its kind (`differing`, `agreeing`) that it stands for.
+fn sample_weight(
+    (sample, split): (&[usize], usize),
+    (differing, agreeing): (usize, usize),
+) -> impl Fn(usize) -> f64 + use<> {
+    let share = |count: usize, of: usize| count as f64 / of.max(1) as f64;
+    let weights = [
+        share(differing, split),
+        share(agreeing, sample.len() - split),
+    ];
+    move |k| weights[usize::from(k >= split)]
 }
 
 /// The options [`estimate_max_dist`] renders with: MAX_DIST at [`PROBE_LIMIT`] or more.
