@@ -1024,7 +1024,10 @@ pub(crate) fn with_mask(
             .collect();
         let flipped = moves.first() == Some(&Kind::UpsideDown) && moves.len() <= 2;
         let alone = moves.len() <= 1 && t.variants.len() <= 2;
-        t.agreement < 1.0 && moves.len() < t.variants.len() && (flipped || alone)
+        // The flip and an offset alone, whose partner only the next candidates hold.
+        let moves_only = flipped && moves.len() == 2 && t.variants.len() == 2;
+        let beside = moves.len() < t.variants.len() && (flipped || alone);
+        t.agreement < 1.0 && (beside || moves_only)
     };
     if let Some(top) = found.first().filter(refined).cloned()
         && let Some(flip) = flip
@@ -1046,12 +1049,26 @@ pub(crate) fn with_mask(
                 rests.push(rest);
             }
         }
+        // The flip and an offset alone: their own best partner too, on the pixels they
+        // leave (examples/spheres.txt upside down, two rows off, lit with the square of
+        // the distance: the next candidates were the flip with one record hidden).
+        let own_partner = (rests[0].is_empty())
+            .then(|| {
+                let partners = (candidates.iter().copied())
+                    .filter(|p| !SHIFTS.contains(&p.kind))
+                    .collect();
+                let left = scorer.left(&moves)?;
+                let ranked = scorer.best_partners(&moves, partners, &left);
+                Some(ranked.into_iter().next()?.0)
+            })
+            .flatten();
+        rests.extend(own_partner.map(|partner| vec![partner]));
         let offsets = (shifts.iter()).filter(|v| v.kind != Kind::UpsideDown);
         let moved: Vec<Vec<Variant>> = (offsets.map(|&offset| [flip, offset]))
             .flat_map(|pair| {
                 let own = moves == pair;
                 (rests.iter().enumerate())
-                    .filter(move |&(k, _)| k > 0 || !own)
+                    .filter(move |&(k, rest)| (k > 0 || !own) && !rest.is_empty())
                     .map(move |(_, rest)| [&pair[..], rest].concat())
             })
             .collect();

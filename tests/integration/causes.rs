@@ -1987,18 +1987,24 @@ fn a_shadow_epsilon_alone_is_found_at_its_value_from_the_blockers() {
 /// third of the differing pixels, the falloff alone a twentieth, and the best candidate
 /// was an offset beside a reader stopped at a record (examples/spheres.txt so at 160x120:
 /// a row back, stopped at line 11, 272 of 895, and nothing stated). The flip and each
-/// offset are tried beside the mistakes of the next candidates too. Drawn by the tiny
-/// tracer.
+/// offset are tried beside the mistakes of the next candidates too. Two rows off, the
+/// flip and the offset were the best, with no partner, and the next candidates the flip
+/// with one record hidden: the two moves' own best partner is looked for too. Drawn by
+/// the tiny tracer.
 #[test]
 fn an_image_upside_down_and_a_row_off_is_found_beside_a_square_falloff() {
     let dir = folder("causes-upside-row-square");
-    let mut mistakes = rule(|m| m.square_falloff = true);
-    (mistakes.upside_down, mistakes.row_offset) = (true, 1);
     let (spheres, tiled) = (example("spheres"), example("tiled_planes"));
-    let one = "upside-down,row-offset=1";
+    let drawn = |rows: usize| {
+        let mut mistakes = rule(|m| m.square_falloff = true);
+        (mistakes.upside_down, mistakes.row_offset) = (true, rows);
+        mistakes
+    };
+    let (one, two) = ("upside-down,row-offset=1", "upside-down,row-offset=2");
     let cases = vec![
-        ("spheres", &spheres, mistakes, vec![one, "square-falloff"]),
-        ("tiled", &tiled, mistakes, vec!["square-falloff", one]),
+        ("spheres", &spheres, drawn(1), vec![one, "square-falloff"]),
+        ("tiled", &tiled, drawn(1), vec!["square-falloff", one]),
+        ("spheres-2", &spheres, drawn(2), vec![two, "square-falloff"]),
     ];
     diagnosed_as_drawn(&dir, cases);
 }
