@@ -542,12 +542,9 @@ pub(crate) fn with_mask(
         // the sampled pixels' blockers lie.
         let epsilon = kind == Kind::ShadowEpsilon && candidates.iter().any(of_kind);
         if epsilon && tried.is_empty() {
-            near.extend(estimate_epsilon(
-                scene,
-                options,
-                &samples[1],
-                (differing, agreeing),
-            ));
+            let (sample, split) = &samples[1];
+            let counts = (differing, agreeing);
+            near.extend(estimate_epsilon(scene, options, (sample, *split), counts));
         }
         try_near(near, &mut first_round, &mut candidates);
     }
@@ -746,14 +743,16 @@ pub(crate) fn with_mask(
                 better(Some(top))
             })?;
             let whole = |counts: Counts| counts.fixed >= differing && counts.broken == 0;
+            let mut more = 0;
             for top in tied {
-                if whole(found.3) || kinds.len() >= RANKED + TIED {
+                if whole(found.3) || more == TIED - 1 {
                     break;
                 }
                 if kinds.contains(&top.0.kind) {
                     continue;
                 }
                 kinds.push(top.0.kind);
+                more += 1;
                 if let Some(other) = better(Some(top)).filter(|o| o.2 > found.2) {
                     found = other;
                 }
@@ -1564,9 +1563,9 @@ impl Scorer<'_> {
             // 2 on the samples).
             let [sample_left, sample_kept] = &samples[1];
             let sample = [&sample_left[..], sample_kept].concat();
-            let split = (sample, sample_left.len());
+            let split = (&sample[..], sample_left.len());
             let counts = (*left_count, *kept_count);
-            if let Some(epsilon) = estimate_epsilon(scene, &moved, &split, counts) {
+            if let Some(epsilon) = estimate_epsilon(scene, &moved, split, counts) {
                 partners.retain(|v| *v != epsilon);
                 let kind = |v: &Variant| v.kind == Kind::ShadowEpsilon;
                 let at = partners.iter().position(kind).unwrap_or(partners.len());
@@ -2073,7 +2072,7 @@ pub fn estimate_max_dist(
 fn estimate_epsilon(
     scene: &Scene,
     options: &Options,
-    (sample, split): &(Vec<usize>, usize),
+    (sample, split): (&[usize], usize),
     (differing, agreeing): (usize, usize),
 ) -> Option<Variant> {
     let at = super::unblocked_at(scene, options, sample);
@@ -2082,13 +2081,13 @@ fn estimate_epsilon(
             Some(super::PathChange {
                 start: (*t)?,
                 pixel: i as u32,
-                agrees: i < *split,
+                agrees: i < split,
             })
         })
         .collect();
     super::by_distance(&mut changes);
-    let state: Vec<bool> = (0..sample.len()).map(|i| i >= *split).collect();
-    let weight = sample_weight((sample, *split), (differing, agreeing));
+    let state: Vec<bool> = (0..sample.len()).map(|i| i >= split).collect();
+    let weight = sample_weight((sample, split), (differing, agreeing));
     let (epsilon, [low, high], _) = best_max_dist(&state, &changes, weight, 0.0)?;
     // A student writes a round ε: a range too narrow to hold one is a coincidence of a
     // few pixels.
