@@ -2117,7 +2117,7 @@ fn an_independent_tracer_s_mistakes_alone_and_in_pairs_are_named_and_nothing_els
     let size = (SIZE.0 as usize, SIZE.1 as usize);
     // What the pixels cannot tell apart, named: jittered rays with an epsilon of 2 on
     // examples/spheres.txt leave 13 pixels, of which no-shadows explains as many as the
-    // epsilon (the 3 the epsilon alone darkens lie within the jittered footprints); and
+    // epsilon; and
     // jitter with the pixel's centre, which moves a ray by up to half a pixel more, or
     // with scale-256 on the spheres, is told jitter alone or nothing.
     let known = [
