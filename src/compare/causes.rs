@@ -245,6 +245,17 @@ fn scene_causes(case: Case, mask: (&[u64], usize)) -> SceneCauses {
             && let Some(Through::Second([pair, jitter])) = jitter_through(case, mask, &found)
             && supported(jitter.explains, jitter.of, 0)
         {
+            // A kernel stated beside (textbook: every ray rounded otherwise) that explains
+            // half of the pixels jitter reads is their cause: read through the scene
+            // variant alone, jitter takes the kernel's moves at edges for its own (the
+            // tiny tracer's a02 without the division by the distance, whose sphere root
+            // is the notes' formula: no-distance, textbook and jitter, 124 and 144 of the
+            // 144 pixels the first leaves).
+            let kernel = |c: &Cause| c.variants.iter().any(|v| v.kind.row().site == Site::Option);
+            if (supported_causes.iter()).any(|c| kernel(c) && 2 * c.explains >= jitter.explains) {
+                causes.extend(supported_causes);
+                return (found, focus, causes);
+            }
             if named(&supported_causes, &jitter.under) {
                 causes.extend(supported_causes);
                 causes.push(jitter);

@@ -958,6 +958,15 @@ fn an_independent_tracer_s_images_of_course_scenes_are_diagnosed_right() {
             rule(|m| m.jitter = Some(2)),
             vec!["jitter"],
         ),
+        // Without the division by the distance: the formula's pixels at the sphere's edge
+        // are what that mistake leaves, and jitter read through it alone took them for
+        // its own (told no-distance, textbook and jitter).
+        (
+            "a02-undivided",
+            &a02,
+            rule(|m| m.no_distance = true),
+            vec!["no-distance", "textbook"],
+        ),
         (
             "a04-round",
             &a04,
