@@ -251,7 +251,7 @@ fn scene_causes(case: Case, mask: (&[u64], usize)) -> SceneCauses {
             // tiny tracer's a02 without the division by the distance, whose sphere root
             // is the notes' formula: no-distance, textbook and jitter, 124 and 144 of the
             // 144 pixels the first leaves).
-            let kernel = |c: &Cause| c.variants.iter().any(|v| v.kind.row().site == Site::Option);
+            let kernel = |c: &Cause| c.variants.iter().any(kernel);
             if (supported_causes.iter()).any(|c| kernel(c) && 2 * c.explains >= jitter.explains) {
                 causes.extend(supported_causes);
                 return (found, focus, causes);
@@ -369,6 +369,13 @@ fn scene_causes(case: Case, mask: (&[u64], usize)) -> SceneCauses {
     }
     causes.extend(supported_causes);
     (found, focus, causes)
+}
+
+/// Whether `v`'s rule is a render option: a kernel (`textbook`, `textbook-f32`: every
+/// ray's arithmetic otherwise, whose moves at edges read as jittered rays'), or
+/// `max-dist`.
+fn kernel(v: &Variant) -> bool {
+    v.kind.row().site == Site::Option
 }
 
 /// Whether each of `moves` is among the variants of `causes`: jitter read under a move is
@@ -609,11 +616,11 @@ fn jitter_through(
     // with its lights' falloff squared was told square-falloff with textbook, then
     // jitter; examples/spheres.txt jittered without the division by the distance,
     // no-distance alone, paired with pixel-centre).
-    let kernel = |v: &Variant| v.kind.row().site == Site::Option || v.kind == Kind::PixelCentre;
+    let edges = |v: &Variant| kernel(v) || v.kind == Kind::PixelCentre;
     if let [a, b] = best.variants[..]
-        && kernel(&a) != kernel(&b)
+        && edges(&a) != edges(&b)
     {
-        let one = if kernel(&a) { b } else { a };
+        let one = if edges(&a) { b } else { a };
         let alone = found.iter().find(|d| d.variants == [one]);
         let shown = alone.map_or((None, None), |d| (d.subject.clone(), d.pixel));
         if let Some(through) = jitter_through_image(case, (mask, count), &[one], shown) {
