@@ -301,6 +301,7 @@ fn scene_causes(case: Case, mask: (&[u64], usize)) -> SceneCauses {
     // rest (an object moved by a pixel or two looks jittered on its shading).
     let clean =
         (in_place.as_ref()).is_some_and(|(c, ..)| c.explains as f64 >= NEARLY_ALL * c.of as f64);
+    let in_place_left = (in_place.as_ref()).map(|(c, ..)| c.of - c.explains);
     // 4. Where jitter in place is not found or leaves more, jittered rays also written a
     // row off (in place, a row off lies within the pixel's footprint on half its edges):
     // jitter read against the reference moved as the best move says.
@@ -366,6 +367,23 @@ fn scene_causes(case: Case, mask: (&[u64], usize)) -> SceneCauses {
             return (found, focus, causes);
         }
         None => {}
+    }
+    // 6. Jittered rays about the pixels' centres, where the catalogue found nothing to
+    // read them through (examples/shadows.txt so was told nothing: its lit floor's
+    // gradient leaves every sample past the reference's footprint on the image's left
+    // and right, where the centre is nearly half a pixel away): stated where read about
+    // the centres they leave under half of what they leave in place.
+    if !clean
+        && supported_causes.is_empty()
+        && let Some(Through::Second(pair)) = centred_jitter(case, mask)
+    {
+        let left_in_place = in_place_left.unwrap_or(mask.1);
+        let [first, jitter] = &pair;
+        let left = (first.of - first.explains).saturating_sub(jitter.explains);
+        if 2 * left < left_in_place {
+            causes.extend(pair);
+            return (found, focus, causes);
+        }
     }
     causes.extend(supported_causes);
     (found, focus, causes)
@@ -631,6 +649,13 @@ fn jitter_through(
     jitter_through_image(case, (mask, count), &best.variants, shown)
 }
 
+/// Jittered rays read about the pixels' centres (`pixel-centre`, spec §7.3): the pair,
+/// where together they explain nearly every differing pixel.
+fn centred_jitter(case: Case, mask: (&[u64], usize)) -> Option<Through> {
+    let centre = Variant::of(Kind::PixelCentre);
+    jitter_through_image(case, mask, &[centre], (None, None))
+}
+
 /// [`jitter_through`] with the image of `variants`, shown by the subject and pixel of
 /// `shown` where it is the candidate stated first.
 fn jitter_through_image(
@@ -645,10 +670,13 @@ fn jitter_through_image(
     // image of the others, each student's pixel against the one the move brings there.
     let (moves, others): (Vec<Variant>, Vec<Variant>) =
         variants.iter().partition(|v| SHIFTS.contains(&v.kind));
+    // Rays through the pixels' centres are read as a scene variant is: the footprints
+    // are taken about their points. Any other camera rule is not read under jitter.
+    let centred = others.iter().any(|v| v.kind == Kind::PixelCentre);
     if others.is_empty()
-        || variants
-            .iter()
-            .any(|v| v.kind.row().site == Site::Camera && !moves.contains(v))
+        || variants.iter().any(|v| {
+            v.kind.row().site == Site::Camera && !moves.contains(v) && v.kind != Kind::PixelCentre
+        })
     {
         return None;
     }
@@ -675,8 +703,9 @@ fn jitter_through_image(
     let jittered = |i: usize| repaired.pixels[i] != student.pixels[i];
     let pixels = 0..reference.pixels.len();
     // Jitter's own pixels: those it gives back the reference's bytes. Under a move, which
-    // is a cause of its own, jitter is never the first.
-    if moves.is_empty() {
+    // is a cause of its own, jitter is never the first; nor about the centres, whose
+    // image is the reference's wherever the centre moves a ray too little to matter.
+    if moves.is_empty() && !centred {
         let explains = (pixels.clone())
             .filter(|&i| differs(i) && jittered(i) && repaired.pixels[i] == reference.pixels[i])
             .count();
@@ -715,6 +744,12 @@ fn jitter_through_image(
     if (together as f64) < NEARLY_ALL * count as f64 || breaks * BREAKS_PER_FIX > together {
         return None;
     }
+    // A pixel the candidate's image gives, where the search named none.
+    let pixel = pixel.or_else(|| {
+        let (w, h) = (case.options.width, case.options.height);
+        let i = (0..reference.pixels.len()).find(|&i| differs(i) && given(i))?;
+        Some(super::pixel_at(i, w, h))
+    });
     // The pair stated as one cause, a move and a scene mistake (a row off and a far
     // clip): its pixel is traced under the move, the ray the student's pixel shows.
     let first = Cause {

@@ -2083,6 +2083,31 @@ fn an_epsilon_beside_a_rule_an_object_missing_and_the_falloff_undivided_are_name
     diagnosed_as_drawn(&dir, cases);
 }
 
+#[test]
+fn jittered_rays_about_the_pixels_centres_are_named_as_both() {
+    // The tiny tracer's jitter about the point of a pixel-centre camera: on the left and
+    // right of the image that point lies nearly half a pixel from spec §4.1's, so that a
+    // sample lands up to a pixel from it, past the footprint jitter is read in. On
+    // examples/shadows.txt, whose floor is one gradient, in-place reading left 336 of
+    // 6,716 differing pixels, and nothing was told; read about the centres, jitter leaves
+    // 33. The tube and the tiled planes were told nothing too.
+    let dir = folder("causes-centred-jitter");
+    let (shadows, tube) = (example("shadows"), example("tube"));
+    let tiled = example("tiled_planes");
+    let centred = || rule(|m| (m.jitter, m.pixel_centre) = (Some(3), true));
+    let cases = vec![
+        (
+            "shadows",
+            &shadows,
+            centred(),
+            vec!["pixel-centre", "jitter"],
+        ),
+        ("tube", &tube, centred(), vec!["pixel-centre", "jitter"]),
+        ("tiled", &tiled, centred(), vec!["pixel-centre", "jitter"]),
+    ];
+    diagnosed_as_drawn(&dir, cases);
+}
+
 /// One switch of the tiny tracer, set.
 type Switch = fn(&mut Mistakes);
 
@@ -2127,14 +2152,12 @@ fn an_independent_tracer_s_mistakes_alone_and_in_pairs_are_named_and_nothing_els
     // What the pixels cannot tell apart, named: jittered rays with an epsilon of 2 on
     // examples/spheres.txt leave 13 pixels, of which no-shadows explains as many as the
     // epsilon; and
-    // jitter with the pixel's centre, which moves a ray by up to half a pixel more, or
-    // with scale-256 on the spheres, is told jitter alone or nothing.
+    // jitter with the pixel's centre or with scale-256 on the spheres is told jitter
+    // alone: jitter read in place explains 606 of the 610 differing pixels beside the
+    // centre, and scale-256 changes few pixels there, within the jittered footprints.
     let known = [
         ("spheres", "jitter+shadow-epsilon=2"),
-        ("shadows", "jitter+pixel-centre"),
         ("spheres", "jitter+pixel-centre"),
-        ("tube", "jitter+pixel-centre"),
-        ("tiled_planes", "jitter+pixel-centre"),
         ("spheres", "jitter+scale-256"),
     ];
     let (mut images, mut failures) = (0, Vec::new());
