@@ -1164,8 +1164,52 @@ fn decision_flips(case: Case, mask: (&[u64], usize), causes: &[Cause]) -> Vec<Fl
 }
 
 /// The causes among the catalogue's best candidate (one variant, or a pair) that the
-/// pixels support, of the `differing` pixels earlier causes left.
+/// pixels support, of the `differing` pixels earlier causes left. One record hidden from
+/// the camera and from the shadow rays, both stated, is one cause: the object missing.
 fn stated(found: &[Diagnosis], differing: usize) -> Vec<Cause> {
+    let mut causes = stated_apart(found, differing);
+    if let [first, second] = &causes[..]
+        && let both = [&first.variants[..], &second.variants[..]].concat()
+        && missing_object(&both).is_some()
+    {
+        let counts = [
+            first.explains + second.explains,
+            first.of,
+            first.breaks + second.breaks,
+        ];
+        let pixel = found.first().and_then(|d| d.pixel).or(first.pixel);
+        let subject = first.subject.clone().or(second.subject.clone());
+        causes = vec![Cause {
+            about: missing_about(&both),
+            ..Cause::of_variants(&both, counts, subject, pixel)
+        }];
+    }
+    causes
+}
+
+/// The line of the record whose object `variants` leave out of every ray, where they
+/// are `hidden@LINE` and `no-shadow@LINE` (in either order): the object missing, as a
+/// reader that skipped its record or a list it was never added to draws it.
+pub fn missing_object(variants: &[Variant]) -> Option<usize> {
+    let [a, b] = variants else {
+        return None;
+    };
+    let kinds = [a.kind, b.kind];
+    let both = kinds.contains(&Kind::Hidden) && kinds.contains(&Kind::NoShadow);
+    (both && a.line == b.line).then_some(a.line).flatten()
+}
+
+/// What the object missing does, in words.
+fn missing_about(variants: &[Variant]) -> String {
+    let line = missing_object(variants).map_or(String::new(), |l| format!(" on line {l}"));
+    format!(
+        "the object of the record{line} is missing: camera, mirror and shadow rays all pass \
+         through it, instead of §4.6 and §4.3 every object is a candidate for every ray"
+    )
+}
+
+/// [`stated`], each variant of a pair its own cause.
+fn stated_apart(found: &[Diagnosis], differing: usize) -> Vec<Cause> {
     let Some(best) = found.first() else {
         return Vec::new();
     };

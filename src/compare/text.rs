@@ -307,8 +307,14 @@ pub fn diagnosis(report: &Report) -> Vec<String> {
                 .to_string(),
         );
         for (k, cause) in causes.iter().enumerate() {
+            let missing = super::causes::missing_object(&cause.variants).is_some();
             let what = match (cause.variants.is_empty(), &cause.subject) {
                 (true, _) => format!("{} ({})", cause.id, cause.about),
+                (false, Some(subject)) if missing => format!(
+                    "--variant {} ({subject} is missing: no camera, mirror or shadow ray meets \
+                     it)",
+                    cause.id
+                ),
                 (false, Some(subject)) => format!("--variant {} ({subject})", cause.id),
                 (false, None) => format!("--variant {}", cause.id),
             };
