@@ -967,6 +967,21 @@ fn an_independent_tracer_s_images_of_course_scenes_are_diagnosed_right() {
             rule(|m| m.no_distance = true),
             vec!["no-distance", "textbook"],
         ),
+        // So too beside a move, where the search tries no third variant: jitter read
+        // under the pair took the formula's pixels for its own (told no-distance,
+        // row-offset=1 and jitter, on the 144 pixels the pair leaves).
+        (
+            "a02-row-undivided",
+            &a02,
+            rule(|m| (m.row_offset, m.no_distance) = (1, true)),
+            vec!["no-distance", "row-offset=1", "textbook"],
+        ),
+        (
+            "a03-upside-down-undivided",
+            &a03,
+            rule(|m| (m.upside_down, m.no_distance) = (true, true)),
+            vec!["no-distance", "upside-down", "textbook"],
+        ),
         (
             "a04-round",
             &a04,
