@@ -405,10 +405,12 @@ fn scene_causes(case: Case, mask: (&[u64], usize)) -> SceneCauses {
     // read them through (examples/shadows.txt so was told nothing: its lit floor's
     // gradient leaves every sample past the reference's footprint on the image's left
     // and right, where the centre is nearly half a pixel away): stated where read about
-    // the centres they leave under half of what they leave in place.
+    // the centres they leave under half of what they leave in place. Not again where
+    // step 5 read them so and found no pair.
     let left_in_place = in_place_left.unwrap_or(mask.1);
     if !clean
         && supported_causes.is_empty()
+        && !found.first().is_some_and(reads_centred)
         && let Some(pair) = centred_pair(case, mask, |left| 2 * left < left_in_place)
     {
         causes.extend(pair);
@@ -471,11 +473,11 @@ fn kernel_beside(case: Case, (mask, count): (&[u64], usize), stated: &[Cause]) -
             let own = |image: &Image| within(image.pixels[i], student.pixels[i], levels);
             is_set(mask, i) && own(&ours) && !own(&theirs)
         };
-        let pixel = (0..student.pixels.len())
-            .find(|&i| gives(i))
-            .map(|i| super::pixel_at(i, options.width, options.height));
         if supported(explains, left, breaks) && best.as_ref().is_none_or(|b| explains > b.explains)
         {
+            let pixel = (0..student.pixels.len())
+                .find(|&i| gives(i))
+                .map(|i| super::pixel_at(i, options.width, options.height));
             best = Some(Cause {
                 under: under.clone(),
                 ..Cause::of_variants(&[kernel], [explains, left, breaks], None, pixel)
@@ -737,16 +739,25 @@ fn jitter_through(
     // The centre paired with a kernel: the centre alone first, for the same reason (the
     // renderer's jitter about the centres on examples/studio.txt was told
     // pixel-centre,textbook-f32 and jitter).
-    let centre = Variant::of(Kind::PixelCentre);
-    if best.variants.len() == 2
-        && best.variants.contains(&centre)
-        && best.variants.iter().any(kernel)
+    if let [_, _] = best.variants[..]
+        && reads_centred(best)
         && let Some(through) = centred_jitter(case, (mask, count))
     {
         return Some(through);
     }
     let shown = (best.subject.clone(), best.pixel);
     jitter_through_image(case, (mask, count), &best.variants, shown)
+}
+
+/// Whether [`jitter_through`] reads jitter about the pixels' centres alone for `best`:
+/// where it is the centre, or the centre with a kernel.
+fn reads_centred(best: &Diagnosis) -> bool {
+    let centre = Variant::of(Kind::PixelCentre);
+    match best.variants[..] {
+        [v] => v == centre,
+        [a, b] => (a == centre && kernel(&b)) || (b == centre && kernel(&a)),
+        _ => false,
+    }
 }
 
 /// Jittered rays read about the pixels' centres (`pixel-centre`, spec §7.3): the pair,
